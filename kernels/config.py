@@ -1,0 +1,56 @@
+"""All Numba compiler options live here, with environment overrides.
+
+``FASTROCK_CACHE=0`` disables the on-disk cache (``NUMBA_CACHE_DIR`` moves it).
+``NUMBA_BOUNDSCHECK=1`` and ``NUMBA_DISABLE_JIT=1`` are honoured by Numba itself.
+"""
+import math
+import os
+
+from numba import njit
+
+CACHE = os.environ.get("FASTROCK_CACHE", "1") != "0"
+# error_model="numpy": a division by zero gives inf/nan instead of raising
+# inside a kernel (an exception in nopython code leaks and cannot be handled
+# per run in a prange sweep).
+_OPTIONS = dict(cache=CACHE, nogil=True, error_model="numpy", fastmath=False)
+
+
+def jit(func):
+    """Compile a kernel helper (inlined into its callers by LLVM)."""
+    return njit(**_OPTIONS)(func)
+
+
+def jit_generic(func):
+    """Compile a generic helper that receives model functions as arguments.
+
+    It is inlined at the Numba-IR level into each model's entry kernel, so
+    that the model functions are resolved statically: passing a dispatcher
+    into a function that stays a separate call makes Numba emit its address
+    as a "dynamic global", which disables the on-disk cache.
+    """
+    return njit(inline="always", **_OPTIONS)(func)
+
+
+def jit_parallel(func):
+    """Compile a parallel sweep kernel (only sweeps use ``prange``)."""
+    return njit(parallel=True, **_OPTIONS)(func)
+
+
+@jit
+def ulp(t):
+    """Spacing of float64 at |t| (np.nextafter goes through a ctypes
+    pointer, which stops Numba's on-disk cache)."""
+    a = abs(t)
+    if a == 0.0:
+        return 5e-324
+    m, e = math.frexp(a)
+    if m == 0.5:
+        # at a power of two the spacing upward is the larger one
+        return math.ldexp(1.0, e - 53)
+    return math.ldexp(1.0, e - 53)
+
+
+@jit
+def next_up(t):
+    """Smallest float64 greater than t (for finite t >= 0)."""
+    return t + ulp(t)

@@ -1,0 +1,458 @@
+"""Generic event-driven integrator for hybrid (piecewise-smooth) models.
+
+One driver serves every motion mode.  A model supplies five jitted
+functions, passed as arguments so that Numba specialises and inlines them
+into the model's entry kernel:
+
+``rhs(t, y, par, disc, hdr, smp, out)``
+    continuous dynamics of the current discrete state ``disc``.
+``event(k, t, y, par, disc, hdr, smp) -> (g, gdot, terminal)``
+    event function k.  Convention: ``g > 0`` is the admissible side and the
+    event fires when g reaches ``<= 0`` (so every event is direction-aware
+    by construction); inactive events return ``g = inf``.  ``gdot`` is dg/dt,
+    used to find an interior minimum (grazing) that the step-end signs miss.
+    Non-terminal events are observers: their transition may update metrics
+    but never the state.
+``transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt) -> status``
+    applies an impact map / mode switch in place; ``k = -1`` means the end
+    of a static phase (``disc[D_STATIC] == 1``: the state is frozen and only
+    ``static_margin`` of the excitation can end it).
+``static_margin(t, y, par, disc, hdr, smp) -> g``
+``after_step(t, y, par, disc, hdr, smp, opt, met, at_end) -> status``
+    metrics after an accepted step, early decisions, and the final status.
+
+Continuous phases use ``dopri``; breakpoints (pulse ends, record samples)
+are never stepped over, and the rhs is re-evaluated just after one.
+"""
+import numpy as np
+
+from .config import jit, jit_generic, next_up, ulp
+from .dopri import (N_STAGES, dense_coefficients, dense_eval, error_norm,
+                    rk_step, select_initial_step, step_factor)
+from .excitation import excitation_end, next_breakpoint, scan_origin, scan_step
+from .layout import (D_STATIC, FAIL_NONFINITE, FAIL_OUTPUT_FULL,
+                     FAIL_STEP_BUDGET, FAIL_STEP_UNDERFLOW, FAIL_TRANSITIONS,
+                     LOG_KIND, LOG_PIVOT, LOG_POST, LOG_PRE, LOG_T, LOG_THETA,
+                     M_N_EVENTS, M_NFEV, M_NREJECT, M_NSTEPS, M_T_EXC_END,
+                     M_T_FINAL, O_ATOL, O_DT_FIXED, O_MAX_STEP, O_MAX_STEPS,
+                     O_RECORD_BREAKS, O_RTOL, O_T0, O_T_END, RUNNING)
+
+MAX_BISECT = 200          # iteration cap of every bisection
+EPS = 2.220446049250313e-16
+MAX_ZERO_LENGTH = 200     # transitions in a row without time advancing
+C_NHIST = 0
+C_NLOG = 1
+C_LOG_DROPPED = 2
+N_COUNTERS = 4
+
+
+@jit
+def log_event(log, cnt, t, kind, pre, post, theta, pivot):
+    """Append one row to the fixed-capacity event log (drops when full)."""
+    i = cnt[C_NLOG]
+    if i < log.shape[0]:
+        log[i, LOG_T] = t
+        log[i, LOG_KIND] = kind
+        log[i, LOG_PRE] = pre
+        log[i, LOG_POST] = post
+        log[i, LOG_THETA] = theta
+        log[i, LOG_PIVOT] = pivot
+        cnt[C_NLOG] = i + 1
+    else:
+        cnt[C_LOG_DROPPED] += 1
+
+
+@jit
+def _store(t, y, disc, hist_t, hist_y, hist_d, cnt):
+    i = cnt[C_NHIST]
+    if i >= hist_t.shape[0]:
+        return False
+    hist_t[i] = t
+    for j in range(y.shape[0]):
+        hist_y[i, j] = y[j]
+    for j in range(hist_d.shape[1]):
+        hist_d[i, j] = disc[j]
+    cnt[C_NHIST] = i + 1
+    return True
+
+
+@jit_generic
+def _event_at(event, k, t, t_old, h, y_old, Q, yev, par, disc, hdr, smp):
+    dense_eval(t, t_old, h, y_old, Q, yev)
+    return event(k, t, yev, par, disc, hdr, smp)
+
+
+@jit_generic
+def _bisect_root(event, k, lo, hi, t_old, h, y_old, Q, yev, par, disc, hdr,
+                 smp):
+    """Bisection on the dense interpolant: g(lo) > 0 >= g(hi).  Returns hi,
+    the first point known to be on the event side, and a converged flag."""
+    for _ in range(MAX_BISECT):
+        tol = 4.0 * EPS * max(abs(lo), abs(hi), 1.0)
+        if hi - lo <= tol:
+            return hi, True
+        mid = 0.5 * (lo + hi)
+        g, _gd, _term = _event_at(event, k, mid, t_old, h, y_old, Q, yev, par,
+                                  disc, hdr, smp)
+        if g > 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return hi, False
+
+
+@jit_generic
+def _bisect_extremum(event, k, lo, hi, sign, t_old, h, y_old, Q, yev, par,
+                     disc, hdr, smp):
+    """Locate where gdot changes sign: sign*gdot < 0 at lo, > 0 at hi."""
+    for _ in range(MAX_BISECT):
+        tol = 4.0 * EPS * max(abs(lo), abs(hi), 1.0)
+        if hi - lo <= tol:
+            break
+        mid = 0.5 * (lo + hi)
+        _g, gd, _term = _event_at(event, k, mid, t_old, h, y_old, Q, yev,
+                                  par, disc, hdr, smp)
+        if sign * gd < 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+@jit_generic
+def _locate(event, k, terminal, phase_start, ta, tb, g0, gd0, g1, gd1,
+            y_old, h, Q, yev, par, disc, hdr, smp):
+    """Root of event k inside [ta, tb] (inf if none) and a converged flag.
+
+    Besides a sign change at the step ends, an interior minimum of g (gdot
+    goes - to +) is located and tested, so that a crossing and its return
+    inside one step (grazing) are not missed.
+    """
+    if g0 > 0.0:
+        if g1 <= 0.0:
+            return _bisect_root(event, k, ta, tb, ta, h, y_old, Q, yev, par,
+                                disc, hdr, smp)
+        if gd0 < 0.0 and gd1 > 0.0:
+            tm = _bisect_extremum(event, k, ta, tb, 1.0, ta, h, y_old, Q, yev,
+                                  par, disc, hdr, smp)
+            gm, _gd, _term = _event_at(event, k, tm, ta, h, y_old, Q, yev,
+                                       par, disc, hdr, smp)
+            if gm <= 0.0:
+                return _bisect_root(event, k, ta, tm, ta, h, y_old, Q, yev,
+                                    par, disc, hdr, smp)
+        return np.inf, True
+    if terminal and phase_start and g1 <= 0.0:
+        # started on the surface: did it leave and come back, or never leave?
+        if gd0 > 0.0 and gd1 < 0.0:
+            tm = _bisect_extremum(event, k, ta, tb, -1.0, ta, h, y_old, Q,
+                                  yev, par, disc, hdr, smp)
+            gm, _gd, _term = _event_at(event, k, tm, ta, h, y_old, Q, yev,
+                                       par, disc, hdr, smp)
+            if gm > 0.0:
+                return _bisect_root(event, k, tm, tb, ta, h, y_old, Q, yev,
+                                    par, disc, hdr, smp)
+        return ta, True
+    return np.inf, True
+
+
+@jit_generic
+def _static_exit(static_margin, t, t_stop, y, par, disc, hdr, smp):
+    """First time in [t, t_stop] at which the static margin reaches <= 0,
+    scanning a grid on which pulse extrema and record samples lie."""
+    g = static_margin(t, y, par, disc, hdr, smp)
+    if g <= 0.0:
+        return t
+    hs = scan_step(hdr)
+    if not np.isfinite(hs) or hs <= 0.0:
+        return np.inf
+    origin = scan_origin(hdr)
+    j = np.floor((t - origin) / hs) + 1.0
+    lo = t
+    while True:
+        tk = origin + j * hs
+        if tk <= lo:
+            j += 1.0
+            continue
+        if tk > t_stop:
+            tk = t_stop
+        g = static_margin(tk, y, par, disc, hdr, smp)
+        if g <= 0.0:
+            hi = tk
+            for _ in range(MAX_BISECT):
+                tol = 4.0 * EPS * max(abs(hi), 1.0)
+                if hi - lo <= tol:
+                    break
+                mid = 0.5 * (lo + hi)
+                if static_margin(mid, y, par, disc, hdr, smp) > 0.0:
+                    lo = mid
+                else:
+                    hi = mid
+            return hi
+        if tk >= t_stop:
+            return np.inf
+        lo = tk
+        j += 1.0
+
+
+@jit
+def _all_finite(y):
+    for i in range(y.shape[0]):
+        if not np.isfinite(y[i]):
+            return False
+    return True
+
+
+@jit_generic
+def integrate_hybrid(rhs, event, transition, static_margin, after_step,
+                     n_events, y, par, disc, hdr, smp, opt, t_eval, met,
+                     hist_t, hist_y, hist_d, log, cnt):
+    """Integrate one run of a hybrid model from opt[O_T0] to opt[O_T_END].
+
+    ``y`` (state) and ``disc`` are updated in place and hold the final state.
+    ``t_eval`` (sorted) selects output times; if it is empty and ``hist_t``
+    has room, every accepted step and every event is stored.  Returns the
+    run status (layout codes).
+    """
+    n = y.shape[0]
+    t = opt[O_T0]
+    t_end = opt[O_T_END]
+    rtol = opt[O_RTOL]
+    atol = opt[O_ATOL]
+    dt_fixed = opt[O_DT_FIXED]
+    max_step = opt[O_MAX_STEP]
+    max_steps = opt[O_MAX_STEPS]
+    sample_breaks = opt[O_RECORD_BREAKS] != 0.0
+    t_exc = excitation_end(hdr)
+    met[M_T_EXC_END] = t_exc
+
+    f = np.empty(n)
+    y_new = np.empty(n)
+    y_old = np.empty(n)
+    ytmp = np.empty(n)
+    yev = np.empty(n)
+    ftmp = np.empty(n)
+    K = np.empty((N_STAGES + 1, n))
+    Q = np.empty((n, 4))
+    g0 = np.empty(n_events)
+    gd0 = np.empty(n_events)
+    g1 = np.empty(n_events)
+    gd1 = np.empty(n_events)
+    term = np.empty(n_events, dtype=np.bool_)
+    roots = np.empty(n_events)
+
+    store = hist_t.shape[0] > 0
+    every_step = store and t_eval.shape[0] == 0
+    i_eval = 0
+    while i_eval < t_eval.shape[0] and t_eval[i_eval] < t:
+        i_eval += 1
+    if every_step:
+        if not _store(t, y, disc, hist_t, hist_y, hist_d, cnt):
+            return FAIL_OUTPUT_FULL
+
+    status = RUNNING
+    steps_taken = 0.0
+    zero_length = 0
+    at_break = False
+    h_abs = 0.0
+    t_phase = np.nan
+
+    while status == RUNNING:
+        if t_phase == t:
+            zero_length += 1
+            if zero_length > MAX_ZERO_LENGTH:
+                status = FAIL_TRANSITIONS
+                break
+        else:
+            zero_length = 0
+        t_phase = t
+
+        # ---------------- static phase: only the excitation can end it -----
+        if disc[D_STATIC] == 1:
+            t_stop = min(t_end, t_exc)
+            t_hit = np.inf
+            if t < t_stop or (t == t_stop and t < t_end):
+                t_hit = _static_exit(static_margin, t, t_stop, y, par, disc,
+                                     hdr, smp)
+            t_next = t_end if not np.isfinite(t_hit) else t_hit
+            while i_eval < t_eval.shape[0] and t_eval[i_eval] <= t_next:
+                if not _store(t_eval[i_eval], y, disc, hist_t, hist_y,
+                              hist_d, cnt):
+                    return FAIL_OUTPUT_FULL
+                i_eval += 1
+            if not np.isfinite(t_hit):
+                t = t_end
+                if every_step and not _store(t, y, disc, hist_t, hist_y,
+                                             hist_d, cnt):
+                    return FAIL_OUTPUT_FULL
+                status = after_step(t, y, par, disc, hdr, smp, opt, met, True)
+                break
+            t = t_hit
+            if every_step and not _store(t, y, disc, hist_t, hist_y, hist_d,
+                                         cnt):
+                return FAIL_OUTPUT_FULL
+            met[M_N_EVENTS] += 1
+            status = transition(-1, t, y, par, disc, hdr, smp, opt, met, log,
+                                cnt)
+            if every_step and not _store(t, y, disc, hist_t, hist_y, hist_d,
+                                         cnt):
+                return FAIL_OUTPUT_FULL
+            at_break = False
+            h_abs = 0.0
+            continue
+
+        # ---------------- continuous phase ----------------------------------
+        tf = next_up(t) if at_break else t
+        rhs(tf, y, par, disc, hdr, smp, f)
+        met[M_NFEV] += 1
+        t_bound = min(next_breakpoint(t, hdr, sample_breaks), t_end)
+        if dt_fixed > 0.0:
+            h_abs = dt_fixed
+        elif h_abs == 0.0:
+            h_abs = select_initial_step(rhs, t, y, t_bound, max_step, f, rtol,
+                                        atol, ytmp, ftmp, par, disc, hdr, smp)
+            met[M_NFEV] += 1
+        for k in range(n_events):
+            g0[k], gd0[k], term[k] = event(k, t, y, par, disc, hdr, smp)
+        phase_start = True
+
+        while True:
+            t_bp = next_breakpoint(t, hdr, sample_breaks)
+            t_bound = min(t_bp, t_end)
+            if steps_taken >= max_steps:
+                status = FAIL_STEP_BUDGET
+                break
+            if dt_fixed > 0.0:
+                t_new = t + dt_fixed
+                if t_new > t_bound or t_bound - t_new < 1e-9 * dt_fixed:
+                    t_new = t_bound
+                h = t_new - t
+                rk_step(rhs, t, y, f, h, K, ytmp, y_new, par, disc, hdr, smp)
+                met[M_NFEV] += 6
+                steps_taken += 1.0
+                if not _all_finite(y_new):
+                    status = FAIL_NONFINITE
+                    break
+            else:
+                # rk.py 111-171 ``_step_impl``
+                min_step = 10.0 * abs(ulp(t))
+                if h_abs > max_step:
+                    h_abs = max_step
+                elif h_abs < min_step:
+                    h_abs = min_step
+                rejected = False
+                failed = False
+                while True:
+                    if h_abs < min_step:
+                        failed = True
+                        status = FAIL_STEP_UNDERFLOW
+                        break
+                    if steps_taken >= max_steps:
+                        failed = True
+                        status = FAIL_STEP_BUDGET
+                        break
+                    t_new = t + h_abs
+                    if t_new > t_bound:
+                        t_new = t_bound
+                    h = t_new - t
+                    h_abs = abs(h)
+                    rk_step(rhs, t, y, f, h, K, ytmp, y_new, par, disc, hdr,
+                            smp)
+                    met[M_NFEV] += 6
+                    steps_taken += 1.0
+                    err = error_norm(K, h, y, y_new, rtol, atol, ytmp)
+                    if not np.isfinite(err):
+                        err = np.inf
+                    if err < 1.0:
+                        h_abs *= step_factor(err, rejected)
+                        break
+                    h_abs *= step_factor(err, True)
+                    rejected = True
+                    met[M_NREJECT] += 1
+                if failed:
+                    break
+            met[M_NSTEPS] += 1
+
+            # ---- events on [t, t_new] ----
+            for k in range(n_events):
+                g1[k], gd1[k], term[k] = event(k, t_new, y_new, par, disc,
+                                               hdr, smp)
+            for i in range(n):
+                y_old[i] = y[i]
+            dense_coefficients(K, Q)
+            t_term = np.inf
+            k_term = -1
+            for k in range(n_events):
+                roots[k] = np.inf
+                if not np.isfinite(g0[k]) and not np.isfinite(g1[k]):
+                    continue
+                r, ok = _locate(event, k, term[k], phase_start, t, t_new,
+                                g0[k], gd0[k], g1[k], gd1[k], y_old, h, Q,
+                                yev, par, disc, hdr, smp)
+                roots[k] = r
+                if term[k] and r < t_term:
+                    t_term = r
+                    k_term = k
+            for k in range(n_events):
+                if (not term[k]) and roots[k] <= t_term and \
+                        np.isfinite(roots[k]):
+                    dense_eval(roots[k], t, h, y_old, Q, yev)
+                    met[M_N_EVENTS] += 1
+                    transition(k, roots[k], yev, par, disc, hdr, smp, opt, met,
+                               log, cnt)
+
+            t_stop = t_term if k_term >= 0 else t_new
+            while i_eval < t_eval.shape[0] and t_eval[i_eval] <= t_stop:
+                dense_eval(t_eval[i_eval], t, h, y_old, Q, yev)
+                if not _store(t_eval[i_eval], yev, disc, hist_t, hist_y,
+                              hist_d, cnt):
+                    return FAIL_OUTPUT_FULL
+                i_eval += 1
+
+            if k_term >= 0:
+                if t_term >= t_new:
+                    for i in range(n):
+                        y[i] = y_new[i]
+                else:
+                    dense_eval(t_term, t, h, y_old, Q, y)
+                t = t_term
+                if every_step and not _store(t, y, disc, hist_t, hist_y,
+                                             hist_d, cnt):
+                    return FAIL_OUTPUT_FULL
+                met[M_N_EVENTS] += 1
+                status = transition(k_term, t, y, par, disc, hdr, smp, opt,
+                                    met, log, cnt)
+                if every_step and not _store(t, y, disc, hist_t, hist_y,
+                                             hist_d, cnt):
+                    return FAIL_OUTPUT_FULL
+                at_break = t == t_bp
+                h_abs = 0.0
+                break
+
+            t = t_new
+            for i in range(n):
+                y[i] = y_new[i]
+                f[i] = K[N_STAGES, i]
+            for k in range(n_events):
+                g0[k] = g1[k]
+                gd0[k] = gd1[k]
+            phase_start = False
+            if every_step and not _store(t, y, disc, hist_t, hist_y, hist_d,
+                                         cnt):
+                return FAIL_OUTPUT_FULL
+            if t >= t_end:
+                status = after_step(t, y, par, disc, hdr, smp, opt, met, True)
+                break
+            status = after_step(t, y, par, disc, hdr, smp, opt, met, False)
+            if status != RUNNING:
+                break
+            if t == t_bp:
+                # the excitation may jump or kink here: restart from the
+                # right limit (FSAL value belongs to the left one)
+                rhs(next_up(t), y, par, disc, hdr, smp, f)
+                met[M_NFEV] += 1
+                for k in range(n_events):
+                    g0[k], gd0[k], term[k] = event(k, t, y, par, disc, hdr,
+                                                   smp)
+
+    met[M_T_FINAL] = t
+    return status

@@ -1,0 +1,128 @@
+"""Integer codes and array layouts shared by all kernels and the front end.
+
+Everything a kernel exchanges with the front end is a flat array whose
+entries are addressed by the constants below.
+"""
+
+# ---- run status (returned by every entry kernel) ---------------------------
+RUNNING = 0
+SAFE_NO_UPLIFT = 1      # never left full contact
+SAFE_REST = 2           # uplifted, came back to rest
+SAFE_MOVING = 3         # upright but still moving at the end of the run
+SAFE_BOUNDED = 4        # stopped early: free motion after the excitation
+                        # provably cannot overturn (energy below the barrier)
+OVERTURN_MODE1 = 5      # overturned after at least one impact
+OVERTURN_MODE2 = 6      # overturned without any impact
+LEANING = 7             # came to rest leaning on a wall (one-sided rocking)
+FLIGHT = 8              # lost contact with the ground (G <= 0 or N = 0)
+FAIL_STEP_UNDERFLOW = -1
+FAIL_STEP_BUDGET = -2
+FAIL_EVENT = -3         # event location failed (iteration cap)
+FAIL_NONFINITE = -4     # NaN/inf in the state
+FAIL_TRANSITIONS = -5   # too many discrete transitions without time advance
+FAIL_OUTPUT_FULL = -6   # time-history buffer full (front end retries larger)
+
+# ---- discrete state vector (int64) -----------------------------------------
+D_MODE = 0         # contact mode, model specific (MODE_* below)
+D_PIVOT = 1        # active pivot s = +1 (right corner) / -1 (left)
+D_STATIC = 2       # 1: state frozen, only the excitation can end the phase
+D_WALL_REST = 3    # 1: resting against the wall
+D_SLIP_DIR = 4     # slip direction sigma
+D_AUX = 5
+N_DISC = 8
+
+# contact modes (shared names, models use the subset they need)
+MODE_REST = 0
+MODE_ROCK = 1
+MODE_SLIDE = 2
+MODE_SLIDE_ROCK = 3
+MODE_FLIGHT = 4
+MODE_OVERTURNED = 5
+MODE_WALL_REST = 6
+
+# ---- metrics vector (float64) ----------------------------------------------
+M_MAX_ABS_THETA = 0    # rad
+M_MAX_THETA_POS = 1    # rad, max of theta (>= 0)
+M_MAX_THETA_NEG = 2    # rad, max of -theta (>= 0)
+M_IMPACTS = 3          # ground impacts
+M_WALL_IMPACTS = 4
+M_T_UPLIFT = 5         # s, first uplift (nan: never)
+M_T_OVER = 6           # s, overturning time (nan: none)
+M_T_PASS_ALPHA = 7     # s, first time |theta| > alpha (nan: none)
+M_NFEV = 8
+M_NSTEPS = 9           # accepted steps
+M_NREJECT = 10
+M_T_FINAL = 11
+M_T_LAST_IMPACT = 12
+M_MAX_U = 13           # m, flexible deflection
+M_MAX_SLIDE = 14       # m
+M_RESIDUAL_SLIDE = 15  # m
+M_T_SLIDE = 16         # s
+M_T_SLIDE_ROCK = 17    # s
+M_N_STICK_SLIP = 18
+M_T_ROCK = 19          # s spent rocking
+M_T_CONTACT = 20       # s spent in full contact
+M_ENERGY_GAINS = 21    # impacts that created energy (I1 map)
+M_N_EVENTS = 22
+M_T_EXC_END = 23
+N_MET = 24
+
+# ---- solver options vector (float64) ---------------------------------------
+O_RTOL = 0
+O_ATOL = 1
+O_DT_FIXED = 2      # > 0: fixed-step mode with this step
+O_MAX_STEP = 3
+O_MAX_STEPS = 4     # step budget (accepted + rejected)
+O_T_END = 5
+O_EARLY_EXIT = 6    # 1: stop once the outcome is decided
+O_RECORD_BREAKS = 7  # 1: every record sample is a breakpoint
+O_EPS_OMEGA = 8     # rad/s, chatter-to-rest velocity threshold
+O_EPS_T = 9         # s, chatter-to-rest impact interval
+O_T0 = 10
+N_OPT = 12
+
+# ---- event log (float64 rows) ----------------------------------------------
+LOG_T = 0
+LOG_KIND = 1
+LOG_PRE = 2     # velocity before
+LOG_POST = 3    # velocity after
+LOG_THETA = 4
+LOG_PIVOT = 5
+N_LOG = 6
+
+EV_UPLIFT = 1
+EV_IMPACT = 2
+EV_WALL_IMPACT = 3
+EV_OVERTURN = 4
+EV_REST = 5
+EV_PASS_ALPHA = 6
+EV_WALL_REST = 7
+EV_WALL_RELEASE = 8
+EV_LEANING = 9
+EV_FLIGHT = 10
+EV_SLIP = 11
+EV_STICK = 12
+EV_PEAK = 13
+EV_CONTACT = 14
+
+# ---- excitation header (float64), one block per channel ---------------------
+X_KIND = 0
+X_AMP = 1      # m/s^2 (sampled: scale factor applied to samples)
+X_OMEGA = 2    # rad/s
+X_SIGN = 3
+X_T0 = 4       # s, start
+X_DUR = 5      # s, duration (sampled: (n-1)*dt)
+X_DT = 6       # s, sample spacing
+X_OFFSET = 7   # first sample index in the shared sample array
+X_N = 8        # number of samples
+N_HDR = 9
+H_CHANNEL = 0          # horizontal block starts here
+V_CHANNEL = N_HDR      # vertical block starts here
+N_EXC = 2 * N_HDR
+
+EXC_NONE = 0
+EXC_ONE_SINE = 1
+EXC_HALF_SINE = 2
+EXC_ONE_COSINE = 3
+EXC_SAMPLED = 4
+EXC_RECTANGULAR = 5

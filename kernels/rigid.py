@@ -1,0 +1,306 @@
+"""Rigid block, two-sided Housner rocking (physics.md section 1).
+
+State ``y = (theta, theta')`` [rad, rad/s]; discrete state: REST (static)
+or ROCK about pivot s.  Parameters ``par`` (indices P_*): alpha [rad],
+p [rad/s], e [-], g [m/s^2], theta_over [rad].  Events while rocking:
+
+0 impact        g = s*theta                 terminal
+1 overturn      g = theta_over - s*theta    terminal
+2 peak          g = s*theta'                observer (max rotation)
+3 pass alpha    g = alpha - s*theta         observer (first time)
+4 flight        g = G = g + a_v             terminal
+"""
+import math
+
+import numpy as np
+from numba import prange
+
+from .config import jit, jit_parallel
+from .excitation import excitation_end, ground, ground_rates
+from .hybrid import N_COUNTERS, integrate_hybrid, log_event
+from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_FLIGHT, EV_IMPACT,
+                     EV_OVERTURN, EV_PASS_ALPHA, EV_REST, EV_UPLIFT, FLIGHT,
+                     M_IMPACTS, M_MAX_ABS_THETA, M_MAX_THETA_NEG,
+                     M_MAX_THETA_POS, M_T_LAST_IMPACT, M_T_OVER,
+                     M_T_PASS_ALPHA, M_T_UPLIFT, MODE_REST, MODE_ROCK,
+                     N_DISC, N_LOG, N_MET, O_EARLY_EXIT, O_EPS_OMEGA,
+                     O_EPS_T, O_T0, OVERTURN_MODE1, OVERTURN_MODE2, RUNNING,
+                     SAFE_BOUNDED, SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
+
+P_ALPHA = 0
+P_P = 1
+P_E = 2
+P_G = 3
+P_THETA_OVER = 4
+# one-sided rocking (wall), used by kernels.wall
+P_WALL_SIDE = 5     # w = +1 / -1
+P_THETA_W = 6       # rad, limit angle
+P_E_W = 7           # wall restitution
+P_HOGAN = 8         # 1: gap d = 0, Hogan's one-sided map
+N_PAR = 10
+
+N_EVENTS = 5
+K_IMPACT = 0
+K_OVERTURN = 1
+K_PEAK = 2
+K_PASS_ALPHA = 3
+K_FLIGHT = 4
+
+
+@jit
+def theta_ddot(t, theta, s, par, hdr, smp):
+    """Housner's exact EOM about pivot s (physics.md 1)."""
+    ag, av = ground(t, hdr, smp)
+    g = par[P_G]
+    p = par[P_P]
+    phi = s * par[P_ALPHA] - theta
+    return -p * p * ((g + av) * math.sin(phi) + ag * math.cos(phi)) / g
+
+
+@jit
+def rhs(t, y, par, disc, hdr, smp, out):
+    out[0] = y[1]
+    out[1] = theta_ddot(t, y[0], disc[D_PIVOT], par, hdr, smp)
+
+
+@jit
+def event(k, t, y, par, disc, hdr, smp):
+    s = disc[D_PIVOT]
+    if k == K_IMPACT:
+        return s * y[0], s * y[1], True
+    if k == K_OVERTURN:
+        return par[P_THETA_OVER] - s * y[0], -s * y[1], True
+    if k == K_PEAK:
+        return s * y[1], s * theta_ddot(t, y[0], s, par, hdr, smp), False
+    if k == K_PASS_ALPHA:
+        return par[P_ALPHA] - s * y[0], -s * y[1], False
+    _ag, _dag, av, dav = ground_rates(t, hdr, smp)
+    return par[P_G] + av, dav, True
+
+
+@jit
+def static_margin(t, y, par, disc, hdr, smp):
+    """Full contact holds while |a_g| <= G tan(alpha) (physics.md 1)."""
+    ag, av = ground(t, hdr, smp)
+    return (par[P_G] + av) * math.tan(par[P_ALPHA]) - abs(ag)
+
+
+@jit
+def track_rotation(theta, met):
+    a = abs(theta)
+    if a > met[M_MAX_ABS_THETA]:
+        met[M_MAX_ABS_THETA] = a
+    if theta > met[M_MAX_THETA_POS]:
+        met[M_MAX_THETA_POS] = theta
+    if -theta > met[M_MAX_THETA_NEG]:
+        met[M_MAX_THETA_NEG] = -theta
+
+
+@jit
+def start_rocking_or_rest(t, y, par, disc, hdr, smp, met, log, cnt):
+    """From theta = theta' = 0: uplift test of physics.md 1, else REST."""
+    ag, av = ground(t, hdr, smp)
+    G = par[P_G] + av
+    if G <= 0.0:
+        log_event(log, cnt, t, EV_FLIGHT, 0.0, 0.0, y[0], disc[D_PIVOT])
+        return FLIGHT
+    if abs(ag) >= G * math.tan(par[P_ALPHA]) and ag != 0.0:
+        disc[D_MODE] = MODE_ROCK
+        disc[D_STATIC] = 0
+        disc[D_PIVOT] = -1 if ag > 0.0 else 1
+        if np.isnan(met[M_T_UPLIFT]):
+            met[M_T_UPLIFT] = t
+        log_event(log, cnt, t, EV_UPLIFT, 0.0, 0.0, y[0], disc[D_PIVOT])
+    else:
+        disc[D_MODE] = MODE_REST
+        disc[D_STATIC] = 1
+    return RUNNING
+
+
+@jit
+def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, e):
+    """Housner impact at theta = 0: pivot switch, theta'+ = e theta'-,
+    then the chatter-to-rest rule of physics.md 7."""
+    s = disc[D_PIVOT]
+    pre = y[1]
+    post = e * pre
+    y[0] = 0.0
+    y[1] = post
+    disc[D_PIVOT] = -s
+    met[M_IMPACTS] += 1
+    log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)
+    chatter = abs(post) < opt[O_EPS_OMEGA] or \
+        t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
+    met[M_T_LAST_IMPACT] = t
+    if chatter:
+        y[1] = 0.0
+        st = start_rocking_or_rest(t, y, par, disc, hdr, smp, met, log, cnt)
+        if disc[D_MODE] == MODE_REST:
+            log_event(log, cnt, t, EV_REST, post, 0.0, 0.0, disc[D_PIVOT])
+        return st
+    return RUNNING
+
+
+@jit
+def overturned(t, y, disc, met, log, cnt):
+    met[M_T_OVER] = t
+    track_rotation(y[0], met)
+    log_event(log, cnt, t, EV_OVERTURN, y[1], y[1], y[0], disc[D_PIVOT])
+    if met[M_IMPACTS] > 0:
+        return OVERTURN_MODE1
+    return OVERTURN_MODE2
+
+
+@jit
+def observe(k, t, y, disc, met, log, cnt):
+    """Observer events shared by the rigid models (peak, pass alpha)."""
+    if k == K_PEAK:
+        track_rotation(y[0], met)
+    elif k == K_PASS_ALPHA:
+        if np.isnan(met[M_T_PASS_ALPHA]):
+            met[M_T_PASS_ALPHA] = t
+            log_event(log, cnt, t, EV_PASS_ALPHA, y[1], y[1], y[0],
+                      disc[D_PIVOT])
+
+
+@jit
+def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    if k < 0:
+        return start_rocking_or_rest(t, y, par, disc, hdr, smp, met, log, cnt)
+    if k == K_IMPACT:
+        return ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
+                             par[P_E])
+    if k == K_OVERTURN:
+        return overturned(t, y, disc, met, log, cnt)
+    if k == K_FLIGHT:
+        log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], y[0], disc[D_PIVOT])
+        return FLIGHT
+    observe(k, t, y, disc, met, log, cnt)
+    return RUNNING
+
+
+@jit
+def peak_from_energy(alpha, energy):
+    """Rotation at which free rocking with energy E (in units of MgR, zero
+    at rest) stops: cos(alpha - theta) = cos(alpha) + E."""
+    c = math.cos(alpha) + energy
+    if c >= 1.0:
+        return alpha
+    return alpha - math.acos(c)
+
+
+@jit
+def free_energy(y, s, par):
+    """Free-rocking energy / (M g R), zero at rest (physics.md 6.6)."""
+    p = par[P_P]
+    a = par[P_ALPHA]
+    return 0.5 * y[1] * y[1] / (p * p) + math.cos(a - s * y[0]) - math.cos(a)
+
+
+@jit
+def bounded_after_excitation(t, y, par, disc, hdr, met):
+    """Early decision once the excitation is over (exact, not a heuristic):
+    free rocking conserves energy between impacts and impacts multiply it
+    by e^2 <= 1, so energy below the barrier 1 - cos(alpha) can never pass
+    |theta| = alpha.  The next two peaks follow in closed form and are
+    folded into the metrics; later peaks are lower.  Returns True if safe."""
+    if t < excitation_end(hdr):
+        return False
+    s = disc[D_PIVOT]
+    a = par[P_ALPHA]
+    E = free_energy(y, s, par)
+    if not E < 1.0 - math.cos(a):
+        return False
+    e2 = par[P_E] * par[P_E]
+    if s * y[1] > 0.0:
+        side1 = s
+        e1 = E
+    else:
+        side1 = -s
+        e1 = e2 * E
+    track_rotation(side1 * peak_from_energy(a, e1), met)
+    track_rotation(-side1 * peak_from_energy(a, e2 * e1), met)
+    return True
+
+
+@jit
+def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
+    track_rotation(y[0], met)
+    if at_end:
+        if disc[D_MODE] == MODE_REST:
+            if np.isnan(met[M_T_UPLIFT]):
+                return SAFE_NO_UPLIFT
+            return SAFE_REST
+        return SAFE_MOVING
+    if opt[O_EARLY_EXIT] != 0.0 and disc[D_MODE] == MODE_ROCK:
+        if bounded_after_excitation(t, y, par, disc, hdr, met):
+            return SAFE_BOUNDED
+    return RUNNING
+
+
+@jit
+def init_state(t0, y, par, disc, hdr, smp, met):
+    """Initial discrete state from (theta0, theta'0)."""
+    for i in range(N_MET):
+        met[i] = 0.0
+    met[M_T_UPLIFT] = np.nan
+    met[M_T_OVER] = np.nan
+    met[M_T_PASS_ALPHA] = np.nan
+    met[M_T_LAST_IMPACT] = -np.inf
+    for i in range(N_DISC):
+        disc[i] = 0
+    if y[0] != 0.0 or y[1] != 0.0:
+        disc[D_MODE] = MODE_ROCK
+        disc[D_STATIC] = 0
+        if y[0] != 0.0:
+            disc[D_PIVOT] = 1 if y[0] > 0.0 else -1
+        else:
+            disc[D_PIVOT] = 1 if y[1] > 0.0 else -1
+        met[M_T_UPLIFT] = t0
+        track_rotation(y[0], met)
+    else:
+        disc[D_MODE] = MODE_REST
+        disc[D_STATIC] = 1
+        disc[D_PIVOT] = 1
+
+
+@jit
+def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
+        cnt):
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    init_state(opt[O_T0], y, par, disc, hdr, smp, met)
+    return integrate_hybrid(rhs, event, transition, static_margin,
+                            after_step, N_EVENTS, y, par, disc, hdr, smp,
+                            opt, t_eval, met, hist_t, hist_y, hist_d, log,
+                            cnt)
+
+
+# ---------------------------------------------------------------- entries
+@jit
+def rigid_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                   hist_d, log, cnt):
+    """One rigid-block run with time history and event log (see run)."""
+    return run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+               log, cnt)
+
+
+@jit_parallel
+def rigid_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Many independent runs in parallel: row i of Y0/PAR/HDR/OPT -> row i
+    of status/MET/YF.  No time history, no event log."""
+    n = Y0.shape[0]
+    for i in prange(n):
+        y = Y0[i].copy()
+        met = np.empty(N_MET)
+        t_eval = np.empty(0)
+        hist_t = np.empty(0)
+        hist_y = np.empty((0, 2))
+        hist_d = np.empty((0, 3), dtype=np.int64)
+        log = np.empty((0, N_LOG))
+        cnt = np.zeros(N_COUNTERS, dtype=np.int64)
+        status[i] = run(y, PAR[i], HDR[i], smp, OPT[i], t_eval, met, hist_t,
+                        hist_y, hist_d, log, cnt)
+        for j in range(N_MET):
+            MET[i, j] = met[j]
+        for j in range(y.shape[0]):
+            YF[i, j] = y[j]
