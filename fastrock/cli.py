@@ -1,0 +1,183 @@
+"""Command-line interface: ``fastrock spectrum | simulate | warmup | ...``."""
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+
+import numpy as np
+
+
+def _body(args):
+    from .bodies import RigidBlock
+    if args.b is not None or args.h is not None:
+        if args.b is None or args.h is None:
+            raise ValueError("give both --b and --h (half-width and half-height, m)")
+        return RigidBlock.rectangle(b=args.b, h=args.h, e=args.e)
+    return RigidBlock(alpha=args.alpha, p=args.p, e=args.e)
+
+
+def _wall(args):
+    if getattr(args, "wall_gap", None) is None:
+        return None
+    from .wall import Wall
+    return Wall(gap=args.wall_gap, side=args.wall_side, height=args.wall_height,
+                restitution=args.wall_restitution)
+
+
+def _add_body_options(p):
+    g = p.add_argument_group("body (rigid block)")
+    g.add_argument("--alpha", type=float, default=0.25, help="slenderness angle alpha [rad] (default 0.25)")
+    g.add_argument("--p", type=float, default=2.0, help="frequency parameter p [rad/s] (default 2.0)")
+    g.add_argument("--b", type=float, help="half-width [m] (with --h: rectangle, overrides --alpha/--p)")
+    g.add_argument("--h", type=float, help="half-height [m]")
+    g.add_argument("--e", type=float, help="restitution (default: Housner, 1 - 1.5 sin^2 alpha)")
+    w = p.add_argument_group("rear wall (one-sided rocking)")
+    w.add_argument("--wall-gap", type=float, help="clear gap d [m] to a rear wall (default: no wall)")
+    w.add_argument("--wall-side", type=int, default=-1, choices=(-1, 1),
+                   help="-1: wall on the negative-theta side, so a positive pulse throws the block "
+                        "toward it (default -1)")
+    w.add_argument("--wall-height", type=float, help="wall height [m] (default: taller than the block)")
+    w.add_argument("--wall-restitution", type=float, default=1.0, help="wall restitution e_w (default 1)")
+
+
+def _add_solver_options(p):
+    g = p.add_argument_group("integrator")
+    g.add_argument("--rtol", type=float, help="relative tolerance of adaptive RK45 (default 1e-8)")
+    g.add_argument("--atol", type=float, help="absolute tolerance (default rtol*1e-2)")
+    g.add_argument("--dt", type=float, help="fixed step [s] instead of adaptive RK45")
+
+
+def cmd_spectrum(args):
+    from .plotting import plot_spectrum
+    from .spectrum import overturning_spectrum
+    body = _body(args)
+    wall = _wall(args)
+    signs = [1, -1] if args.sign == "both" else [int(args.sign)]
+    amps = np.linspace(args.amp_min, args.amp_max, args.n_amp)
+    freqs = np.linspace(args.freq_min, args.freq_max, args.n_freq)
+    t0 = time.perf_counter()
+    df = overturning_spectrum(body, amps, freqs, sign=signs, pulse=args.pulse, wall=wall,
+                              rtol=args.rtol, atol=args.atol, dt=args.dt, progress=not args.quiet)
+    el = time.perf_counter() - t0
+    df.to_csv(args.csv, index=False)
+    plt = __import__("matplotlib.pyplot").pyplot
+    fig, axes = plt.subplots(1, len(signs), figsize=(6.2 * len(signs), 4.8), squeeze=False,
+                             constrained_layout=True)
+    for ax, s in zip(axes[0], signs):
+        plot_spectrum(df[df["sign"] == s], ax=ax,
+                      title=f"{args.pulse} pulse, sign {s:+d}; alpha={body.alpha:.3f}, p={body.p:.3f}, "
+                            f"e={body.e:.3f}" + ("" if wall is None else f", wall d={wall.gap} m"))
+    fig.savefig(args.png, dpi=130)
+    counts = df["outcome"].value_counts().to_dict()
+    print(f"{len(df)} runs in {el:.2f} s ({len(df) / el:,.0f} runs/s), outcomes {counts}")
+    print(f"wrote {args.png} and {args.csv}")
+    return 0
+
+
+def cmd_simulate(args):
+    from .excitation import Pulse
+    from .simulate import simulate
+    body = _body(args)
+    pulse = Pulse(amplitude=args.amplitude, frequency=args.frequency, sign=args.sign, kind=args.pulse,
+                  amplitude_unit=args.amplitude_unit, frequency_unit=args.frequency_unit)
+    r = simulate(body, pulse, wall=_wall(args), theta0=args.theta0, rtol=args.rtol, atol=args.atol,
+                 dt=args.dt, duration=args.duration)
+    m = r.metrics
+    print(f"outcome {r.outcome} ({r.status}); kernel {r.kernel}")
+    print(f"max |theta|/alpha = {m['max_rotation_ratio']:.6g}, impacts = {m['impacts']}, "
+          f"uplift t = {m['time_uplift']:.6g} s, overturn t = {m['time_overturn']:.6g} s, nfev = {m['nfev']}")
+    if args.csv:
+        r.history.to_csv(args.csv, index=False)
+        print(f"wrote {args.csv}")
+    if args.events:
+        r.events.to_csv(args.events, index=False)
+        print(f"wrote {args.events}")
+    if args.png:
+        r.plot().savefig(args.png, dpi=130)
+        print(f"wrote {args.png}")
+    return 0
+
+
+def cmd_warmup(args):
+    from .warmup import warmup
+    for name, seconds in warmup(args.models or None):
+        print(f"{name:<16} ready in {seconds:6.2f} s")
+    return 0
+
+
+def build_parser():
+    p = argparse.ArgumentParser(prog="fastrock", description="Rocking, sliding and overturning of "
+                                "free-standing bodies under ground shaking.")
+    sub = p.add_subparsers(dest="command", required=True)
+
+    s = sub.add_parser("spectrum", help="overturning spectrum under pulses (PNG + CSV)",
+                       description="Overturning spectrum a_p/(g tan alpha) against omega_p/p under "
+                                   "one-sine pulses, on built-in defaults.")
+    _add_body_options(s)
+    s.add_argument("--pulse", default="one-sine", choices=("one-sine", "half-sine", "one-cosine"))
+    s.add_argument("--sign", default="1", choices=("1", "-1", "both"), help="pulse sign (default +1)")
+    s.add_argument("--amp-min", type=float, default=0.5, help="min a_p/(g tan alpha) (default 0.5)")
+    s.add_argument("--amp-max", type=float, default=8.0, help="max a_p/(g tan alpha) (default 8)")
+    s.add_argument("--n-amp", type=int, default=120)
+    s.add_argument("--freq-min", type=float, default=0.25, help="min omega_p/p (default 0.25)")
+    s.add_argument("--freq-max", type=float, default=10.0, help="max omega_p/p (default 10)")
+    s.add_argument("--n-freq", type=int, default=120)
+    _add_solver_options(s)
+    s.add_argument("--png", default="spectrum.png", help="output figure (default spectrum.png)")
+    s.add_argument("--csv", default="spectrum.csv", help="output table (default spectrum.csv)")
+    s.add_argument("--quiet", action="store_true", help="no progress bar")
+    s.set_defaults(func=cmd_spectrum)
+
+    s = sub.add_parser("simulate", help="one run under a pulse: outcome, time history, events")
+    _add_body_options(s)
+    s.add_argument("--pulse", default="one-sine", choices=("one-sine", "half-sine", "one-cosine"))
+    s.add_argument("--amplitude", type=float, default=3.0)
+    s.add_argument("--amplitude-unit", default="g_tan_alpha", choices=("g", "m/s2", "g_tan_alpha"))
+    s.add_argument("--frequency", type=float, default=2.0)
+    s.add_argument("--frequency-unit", default="omega_p/p", choices=("Hz", "rad/s", "omega_p/p"))
+    s.add_argument("--sign", type=int, default=1, choices=(1, -1))
+    s.add_argument("--theta0", type=float, default=0.0, help="initial rotation [rad]")
+    s.add_argument("--duration", type=float, help="end time [s] (default: pulse + 10 s)")
+    _add_solver_options(s)
+    s.add_argument("--csv", help="write the time history")
+    s.add_argument("--events", help="write the events table")
+    s.add_argument("--png", help="write a time-history figure")
+    s.set_defaults(func=cmd_simulate)
+
+    s = sub.add_parser("warmup", help="compile (or load from cache) the kernels ahead of a sweep")
+    s.add_argument("models", nargs="*", default=None, help="kernels to compile (default: all)")
+    s.set_defaults(func=cmd_warmup)
+
+    for register in _extra_commands():
+        register(sub)
+    return p
+
+
+def _extra_commands():
+    """Subcommands defined next to their features."""
+    out = []
+    for mod, fn in (("freerocking", "add_fit_subcommand"), ("rocking_spectrum", "add_subcommands"),
+                    ("accuracy", "add_subcommand")):
+        try:
+            m = __import__(f"fastrock.{mod}", fromlist=[fn])
+        except ImportError:
+            continue
+        if hasattr(m, fn):
+            out.append(getattr(m, fn))
+    return out
+
+
+def main(argv=None):
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except ValueError as exc:
+        print(f"fastrock: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,84 @@
+"""Run status codes returned by kernels, and their names.
+
+``outcome`` is the coarse class used in spectra: "safe", "mode1" (overturned
+after at least one impact), "mode2" (overturned without impact), "leaning",
+"flight", "slide" (friction models) and "failed".  ``status`` refines it.
+"""
+from fastrock.kernels import layout as L
+
+STATUS = {
+    L.SAFE_NO_UPLIFT: "safe:no-uplift",
+    L.SAFE_REST: "safe:rest",
+    L.SAFE_MOVING: "safe:moving",
+    L.SAFE_BOUNDED: "safe:bounded",
+    L.OVERTURN_MODE1: "overturn:mode1",
+    L.OVERTURN_MODE2: "overturn:mode2",
+    L.LEANING: "leaning",
+    L.FLIGHT: "flight",
+    L.FAIL_STEP_UNDERFLOW: "failed:step-underflow",
+    L.FAIL_STEP_BUDGET: "failed:step-budget",
+    L.FAIL_EVENT: "failed:event-location",
+    L.FAIL_NONFINITE: "failed:non-finite",
+    L.FAIL_TRANSITIONS: "failed:transition-loop",
+    L.FAIL_OUTPUT_FULL: "failed:output-full",
+    L.RUNNING: "failed:unfinished",
+}
+
+STATUS_DESCRIPTION = {
+    "safe:no-uplift": "never left full contact",
+    "safe:rest": "uplifted and came back to rest",
+    "safe:moving": "upright but still moving when the run ended",
+    "safe:bounded": "stopped early: after the excitation the free-rocking energy is below the "
+                    "overturning barrier, so it cannot overturn (it decays to rest)",
+    "overturn:mode1": "overturned after at least one impact",
+    "overturn:mode2": "overturned without any impact",
+    "leaning": "came to rest leaning on the wall",
+    "flight": "lost contact with the ground (vertical acceleration below -g)",
+}
+
+
+def outcome_of(code):
+    code = int(code)
+    if code in (L.SAFE_NO_UPLIFT, L.SAFE_REST, L.SAFE_MOVING, L.SAFE_BOUNDED):
+        return "safe"
+    if code == L.OVERTURN_MODE1:
+        return "mode1"
+    if code == L.OVERTURN_MODE2:
+        return "mode2"
+    if code == L.LEANING:
+        return "leaning"
+    if code == L.FLIGHT:
+        return "flight"
+    return "failed"
+
+
+def status_of(code):
+    return STATUS.get(int(code), f"failed:code{int(code)}")
+
+
+EVENT_NAMES = {
+    L.EV_UPLIFT: "uplift",
+    L.EV_IMPACT: "impact",
+    L.EV_WALL_IMPACT: "wall-impact",
+    L.EV_OVERTURN: "overturn",
+    L.EV_REST: "rest",
+    L.EV_PASS_ALPHA: "pass-alpha",
+    L.EV_WALL_REST: "wall-rest",
+    L.EV_WALL_RELEASE: "wall-release",
+    L.EV_LEANING: "leaning",
+    L.EV_FLIGHT: "flight",
+    L.EV_SLIP: "slip",
+    L.EV_STICK: "stick",
+    L.EV_PEAK: "peak",
+    L.EV_CONTACT: "contact",
+}
+
+MODE_NAMES = {
+    L.MODE_REST: "rest",
+    L.MODE_ROCK: "rock",
+    L.MODE_SLIDE: "slide",
+    L.MODE_SLIDE_ROCK: "slide-rock",
+    L.MODE_FLIGHT: "flight",
+    L.MODE_OVERTURNED: "overturned",
+    L.MODE_WALL_REST: "wall-rest",
+}

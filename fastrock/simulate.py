@@ -1,0 +1,196 @@
+"""Single runs: time history, events and outcome."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from . import _validate as V
+from . import excitation as X
+from . import models
+from .outcomes import EVENT_NAMES, MODE_NAMES, outcome_of, status_of
+from .solver import DEFAULT_T_AFTER, make_solver
+from fastrock.kernels import layout as L
+from fastrock.kernels.hybrid import C_LOG_DROPPED, C_NHIST, C_NLOG, N_COUNTERS
+
+METRIC_COLUMNS = {
+    "max_rotation": L.M_MAX_ABS_THETA,
+    "max_rotation_pos": L.M_MAX_THETA_POS,
+    "max_rotation_neg": L.M_MAX_THETA_NEG,
+    "impacts": L.M_IMPACTS,
+    "wall_impacts": L.M_WALL_IMPACTS,
+    "time_uplift": L.M_T_UPLIFT,
+    "time_overturn": L.M_T_OVER,
+    "time_pass_alpha": L.M_T_PASS_ALPHA,
+    "nfev": L.M_NFEV,
+    "steps": L.M_NSTEPS,
+    "rejected_steps": L.M_NREJECT,
+    "time_end": L.M_T_FINAL,
+}
+INTEGER_METRICS = ("impacts", "wall_impacts", "nfev", "steps", "rejected_steps")
+
+
+def metrics_dict(met, body):
+    d = {k: float(met[i]) for k, i in METRIC_COLUMNS.items()}
+    for k in INTEGER_METRICS:
+        d[k] = int(d[k])
+    d["max_rotation_ratio"] = d["max_rotation"] / body.alpha
+    d["ground_impacts"] = d["impacts"]
+    return d
+
+
+@dataclass
+class SimulationResult:
+    """Outcome of :func:`simulate`.
+
+    Attributes
+    ----------
+    history : DataFrame
+        Columns ``t`` [s], ``a_g``, ``a_v`` [m/s^2], ``theta`` [rad],
+        ``theta_dot`` [rad/s], ``theta_ratio`` (theta/alpha), ``contact``
+        ("rest", "rock", ...), ``pivot`` (+1 right corner, -1 left, 0 at rest).
+    events : DataFrame
+        Columns ``t`` [s], ``event``, ``pivot``, ``theta`` [rad],
+        ``velocity_before``, ``velocity_after`` [rad/s].
+    outcome : str
+        "safe", "mode1", "mode2", "leaning", "flight" or "failed".
+    status : str
+        Refined status, e.g. "safe:rest" (see fastrock.outcomes).
+    metrics : dict
+        max |theta| (``max_rotation`` [rad], ``max_rotation_ratio``), impacts,
+        times of uplift / overturning [s], nfev, steps ...
+    kernel : str
+        Name of the compiled kernel that ran.
+    """
+
+    history: pd.DataFrame
+    events: pd.DataFrame
+    outcome: str
+    status: str
+    status_code: int
+    metrics: dict
+    kernel: str
+    body: object
+    excitation: object = None
+    effects: tuple = field(default_factory=tuple)
+
+    def plot(self, **kw):
+        from .plotting import plot_history
+        return plot_history(self, **kw)
+
+
+def simulate(body, excitation=None, *, vertical=None, wall=None, theta0=0.0, dtheta0=0.0,
+             duration=None, t_after=DEFAULT_T_AFTER, t_eval=None, solver=None, rtol=None,
+             atol=None, dt=None, early_exit=False, max_steps=None, record_breakpoints=None,
+             history_capacity=None):
+    """Simulate one body under a ground excitation (or free rocking).
+
+    Parameters
+    ----------
+    body : RigidBlock
+    excitation : Pulse, SampledMotion or GroundMotion, optional
+        Horizontal ground acceleration.  None: free rocking from
+        (``theta0``, ``dtheta0``).
+    vertical : Pulse, SampledMotion or GroundMotion, optional
+        Vertical ground acceleration a_v (effective gravity G = g + a_v).
+    wall : Wall, optional
+        One-sided rocking against a rear wall.
+    theta0, dtheta0 : float
+        Initial rotation [rad] and angular velocity [rad/s].
+    duration : float, optional
+        End time [s].  Default: end of the excitation + ``t_after``.
+    t_eval : array, optional
+        Output times [s]; default: every accepted step and every event.
+    solver, rtol, atol, dt :
+        Integrator settings (see :class:`fastrock.Solver`); ``dt`` selects the
+        fixed-step mode.
+    early_exit : bool
+        Stop once the outcome is decided (see README, "Early decisions").
+
+    Returns
+    -------
+    SimulationResult
+    """
+    kw = {}
+    if max_steps is not None:
+        kw["max_steps"] = max_steps
+    if record_breakpoints is not None:
+        kw["record_breakpoints"] = record_breakpoints
+    solver = make_solver(solver, rtol, atol, dt, **kw)
+    excitation = X.as_excitation(excitation)
+    vertical = X.as_excitation(vertical)
+    theta0 = V.finite("theta0", theta0)
+    dtheta0 = V.finite("dtheta0", dtheta0)
+    if abs(theta0) >= body.theta_over:
+        raise ValueError(f"theta0 must satisfy |theta0| < theta_over = {body.theta_over}, got {theta0}")
+    spec = models.select(body, wall)
+    if wall is not None:
+        wall.check_initial(theta0, body)
+    t_exc = X.end_time(body, excitation, vertical)
+    if duration is None:
+        t_end = t_exc + V.non_negative("t_after", t_after)
+    else:
+        t_end = V.positive("duration", duration)
+    if t_end <= 0:
+        raise ValueError("the run has zero length: give duration or an excitation")
+    hdr, smp = X.to_header(body, excitation, vertical)
+    opt = solver.options(t_end, early_exit)
+    if t_eval is None:
+        te = np.empty(0)
+        cap = history_capacity or 20000
+    else:
+        te = np.sort(V.finite_array("t_eval", t_eval))
+        cap = te.size + 2
+    y0 = np.array([theta0, dtheta0], float)
+    while True:
+        y = y0.copy()
+        met = np.zeros(L.N_MET)
+        hist_t = np.empty(cap)
+        hist_y = np.empty((cap, spec.n_state))
+        hist_d = np.empty((cap, 3), np.int64)
+        log = np.empty((max(1000, cap // 4), L.N_LOG))
+        cnt = np.zeros(N_COUNTERS, np.int64)
+        code = int(spec.simulate(y, spec.par, hdr, smp, opt, te, met, hist_t, hist_y, hist_d, log, cnt))
+        if code == L.FAIL_OUTPUT_FULL and cap < 50_000_000:
+            cap *= 4
+            continue
+        break
+    nh = int(cnt[C_NHIST])
+    t = hist_t[:nh]
+    ag, av = _ground_at(t, hdr, smp)
+    th = hist_y[:nh, 0]
+    history = pd.DataFrame({
+        "t": t, "a_g": ag, "a_v": av, "theta": th, "theta_dot": hist_y[:nh, 1],
+        "theta_ratio": th / body.alpha,
+        "contact": [MODE_NAMES.get(int(m), str(m)) for m in hist_d[:nh, 0]],
+        "pivot": np.where(hist_d[:nh, 0] == L.MODE_REST, 0, hist_d[:nh, 1]),
+    })
+    nl = int(cnt[C_NLOG])
+    lg = log[:nl]
+    events = pd.DataFrame({
+        "t": lg[:, L.LOG_T],
+        "event": [EVENT_NAMES.get(int(k), str(k)) for k in lg[:, L.LOG_KIND]],
+        "pivot": lg[:, L.LOG_PIVOT].astype(int),
+        "theta": lg[:, L.LOG_THETA],
+        "velocity_before": lg[:, L.LOG_PRE],
+        "velocity_after": lg[:, L.LOG_POST],
+    })
+    if cnt[C_LOG_DROPPED]:
+        events.attrs["dropped"] = int(cnt[C_LOG_DROPPED])
+    return SimulationResult(history=history, events=events, outcome=outcome_of(code),
+                            status=status_of(code), status_code=code,
+                            metrics=metrics_dict(met, body), kernel=spec.name, body=body,
+                            excitation=excitation,
+                            effects=tuple(e for e, on in (("wall", wall is not None),
+                                                          ("vertical", vertical is not None)) if on))
+
+
+def _ground_at(t, hdr, smp):
+    from fastrock.kernels.excitation import ground
+    ag = np.empty(t.size)
+    av = np.empty(t.size)
+    for i, ti in enumerate(t):
+        ag[i], av[i] = ground(ti, hdr, smp)
+    return ag, av

@@ -1,0 +1,138 @@
+"""Overturning spectra under pulses (grid of amplitude x frequency x sign)."""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from . import _validate as V
+from . import excitation as X
+from . import models
+from .outcomes import outcome_of, status_of
+from .solver import DEFAULT_T_AFTER, make_solver
+from .sweep import run_sweep
+from fastrock.kernels import layout as L
+
+SPECTRUM_COLUMNS = """\
+amplitude_ratio     a_p / (g tan alpha)                      [-]
+frequency_ratio     omega_p / p                              [-]
+sign                pulse sign (+1: ground first accelerates toward +x)
+amplitude           a_p                                      [m/s^2]
+amplitude_g         a_p / g                                  [-]
+frequency_hz        f_p = omega_p / (2 pi)                   [Hz]
+outcome             safe | mode1 | mode2 | leaning | flight | failed
+status              refined status (e.g. safe:rest, safe:bounded)
+max_rotation_ratio  max |theta| / alpha                      [-]
+max_rotation        max |theta|                              [rad]
+impacts             ground impacts (up to the decision when early_exit)
+ground_impacts      same as impacts
+wall_impacts        wall impacts (0 without a wall)
+max_rotation_toward_wall, max_rotation_away_from_wall  [rad] (with a wall)
+time_uplift         first uplift                             [s]
+time_overturn       overturning time (NaN if safe)           [s]
+time_end            time at which the run stopped            [s]
+nfev                right-hand-side evaluations
+"""
+
+
+def _grid(values, name):
+    a = np.atleast_1d(V.finite_array(name, np.atleast_1d(values)))
+    if (a < 0).any():
+        raise ValueError(f"{name} must be >= 0")
+    return a
+
+
+def _signs(sign):
+    if isinstance(sign, str):
+        if sign != "both":
+            raise ValueError(f"sign must be +1, -1, 'both' or a list, got {sign!r}")
+        return [1, -1]
+    if np.ndim(sign) == 0:
+        return [V.sign("sign", sign)]
+    return [V.sign("sign", s) for s in sign]
+
+
+def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, pulse="one-sine",
+                         wall=None, solver=None, rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
+                         early_exit=True, chunk_size=None, progress=True):
+    """Overturning spectrum of a body under pulses, in parallel.
+
+    Parameters
+    ----------
+    body : RigidBlock
+    amplitude_ratios : array
+        a_p / (g tan alpha) values.
+    frequency_ratios : array
+        omega_p / p values (> 0).
+    sign : +1, -1, "both" or list
+        Pulse sign(s); a_g = sign * a_p * sin(omega_p t).
+    pulse : str
+        "one-sine" (default), "half-sine", "one-cosine".
+    wall : Wall, optional
+    early_exit : bool
+        Stop a run once its outcome is decided (exact; see README).
+    progress : bool
+        Progress bar on stderr for long sweeps.  Ctrl-C returns the finished
+        rows (``df.attrs["interrupted"]`` is True).
+
+    Returns
+    -------
+    DataFrame, one row per run; columns in ``SPECTRUM_COLUMNS``.
+    """
+    solver = make_solver(solver, rtol, atol, dt)
+    V.choice("pulse", pulse, ("one-sine", "half-sine", "one-cosine"))
+    amps = _grid(amplitude_ratios, "amplitude_ratios")
+    freqs = _grid(frequency_ratios, "frequency_ratios")
+    if (freqs <= 0).any():
+        raise ValueError("frequency_ratios must be > 0")
+    signs = _signs(sign)
+    t_after = V.non_negative("t_after", t_after)
+    spec = models.select(body, wall)
+    S, F, A = np.meshgrid(np.array(signs, float), freqs, amps, indexing="ij")
+    S, F, A = S.ravel(), F.ravel(), A.ravel()
+    n = A.size
+    kind = X.PULSE_KINDS[pulse]
+    omega = F * body.p
+    amp = A * body.g * np.tan(body.alpha)
+    dur = (np.pi if pulse == "half-sine" else 2 * np.pi) / omega
+    HDR = np.zeros((n, L.N_EXC))
+    HDR[:, L.X_KIND] = kind
+    HDR[:, L.X_AMP] = amp
+    HDR[:, L.X_OMEGA] = omega
+    HDR[:, L.X_SIGN] = S
+    HDR[:, L.X_DUR] = dur
+    opt = solver.options(0.0, early_exit)
+    OPT = np.tile(opt, (n, 1))
+    OPT[:, L.O_T_END] = dur + t_after
+    PAR = np.tile(spec.par, (n, 1))
+    Y0 = np.zeros((n, spec.n_state))
+    status, MET, YF, done = run_sweep(spec.sweep, Y0, PAR, HDR, np.zeros(1), OPT, chunk_size, progress,
+                                      label="runs")
+    df = pd.DataFrame({
+        "amplitude_ratio": A, "frequency_ratio": F, "sign": S.astype(int),
+        "amplitude": amp, "amplitude_g": amp / body.g, "frequency_hz": omega / (2 * np.pi),
+    })
+    df = _add_results(df, status, MET, body, wall)
+    df = df.iloc[:done].reset_index(drop=True)
+    df.attrs.update(interrupted=done < n, kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e,
+                    pulse=pulse, solver=solver.name)
+    return df
+
+
+def _add_results(df, status, MET, body, wall=None):
+    df["outcome"] = [outcome_of(c) for c in status]
+    df["status"] = [status_of(c) for c in status]
+    df["max_rotation_ratio"] = MET[:, L.M_MAX_ABS_THETA] / body.alpha
+    df["max_rotation"] = MET[:, L.M_MAX_ABS_THETA]
+    df["impacts"] = np.nan_to_num(MET[:, L.M_IMPACTS]).astype(int)
+    df["ground_impacts"] = df["impacts"]
+    df["wall_impacts"] = np.nan_to_num(MET[:, L.M_WALL_IMPACTS]).astype(int)
+    if wall is not None:
+        toward = L.M_MAX_THETA_POS if wall.side > 0 else L.M_MAX_THETA_NEG
+        away = L.M_MAX_THETA_NEG if wall.side > 0 else L.M_MAX_THETA_POS
+        df["max_rotation_toward_wall"] = MET[:, toward]
+        df["max_rotation_away_from_wall"] = MET[:, away]
+    df["time_uplift"] = MET[:, L.M_T_UPLIFT]
+    df["time_overturn"] = MET[:, L.M_T_OVER]
+    df["time_end"] = MET[:, L.M_T_FINAL]
+    df["nfev"] = np.nan_to_num(MET[:, L.M_NFEV]).astype(np.int64)
+    return df

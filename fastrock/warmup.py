@@ -1,0 +1,36 @@
+"""Compile (or load from the on-disk cache) kernels ahead of time."""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+
+def _rigid(wall=None):
+    from .bodies import RigidBlock
+    from .excitation import Pulse
+    from .simulate import simulate
+    from .spectrum import overturning_spectrum
+    b = RigidBlock(alpha=0.2, p=2.0)
+    simulate(b, Pulse(3.0, 2.0, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p"), wall=wall,
+             duration=1.0)
+    overturning_spectrum(b, [3.0], [2.0], wall=wall, progress=False)
+
+
+def _wall():
+    from .wall import Wall
+    _rigid(Wall(gap=0.01))
+
+
+MODELS = {"rigid": _rigid, "wall": _wall}
+
+
+def warmup(models=None):
+    """Compile the named kernels (default all); yields (name, seconds)."""
+    names = models or list(MODELS)
+    for name in names:
+        if name not in MODELS:
+            raise ValueError(f"unknown model {name!r}; choose from {sorted(MODELS)}")
+        t0 = time.perf_counter()
+        MODELS[name]()
+        yield name, time.perf_counter() - t0
