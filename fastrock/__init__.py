@@ -4,14 +4,14 @@ of free-standing bodies under earthquake ground motion.
 Importing fastrock compiles nothing; kernels compile (or load from the
 on-disk cache) at their first call.  ``fastrock warmup`` compiles ahead.
 """
-from .bodies import RigidBlock, housner_restitution
+from .bodies import FlexibleBody, RigidBlock, housner_restitution
 from .excitation import Pulse, SampledMotion
 from .solver import Solver
 from .simulate import SimulationResult, simulate
 from .spectrum import overturning_spectrum
 
 __all__ = [
-    "RigidBlock", "housner_restitution", "Pulse", "SampledMotion", "Solver",
+    "RigidBlock", "FlexibleBody", "housner_restitution", "Pulse", "SampledMotion", "Solver",
     "SimulationResult", "simulate", "overturning_spectrum",
 ]
 __version__ = "0.1.0"

@@ -115,3 +115,120 @@ class RigidBlock:
         if self.b is not None and self.h is not None:
             return math.hypot(self.b, self.h)
         return None
+
+
+IMPACT_MAPS = {"full-contact": 0, "pivot-switch": 1}
+
+
+@dataclass(frozen=True)
+class FlexibleBody:
+    """Lumped mass on an elastic column on a rigid rocking base (physics.md 3).
+
+    Parameters (the literature's groups)
+    ----------
+    alpha : float
+        Slenderness atan(B/H) [rad], 0 < alpha < pi/2.
+    p : float
+        Frequency parameter [rad/s], p^2 = m g R0 / (m R0^2 + I_m).
+    omega_n_over_p : float
+        omega_n/p, omega_n = sqrt(K/m) the fixed-base column frequency (finite:
+        use RigidBlock for a rigid body).
+    zeta : float
+        Column damping ratio c / (2 m omega_n), >= 0.
+    e : float, optional
+        Restitution factor applied to theta'+ by the pivot-switch (I1) map
+        (default 1: the bare I1 map).  Not used by the full-contact map.
+    impact : str
+        "full-contact" (I3, default: theta'+ = 0, u'+ = u'- + H theta'-, then
+        the uplift test at once) or "pivot-switch" (I1, u' continuous, angular
+        momentum about the new corner conserved; can create energy, counted in
+        the ``energy_gains`` metric).
+    rotary_inertia_ratio : float
+        I_m / (m R0^2) (default 0: point mass).
+    mass : float
+        m [kg], only scales forces in the time history (default 1).
+    """
+
+    alpha: float
+    p: float
+    omega_n_over_p: float
+    zeta: float = 0.0
+    e: float | None = None
+    impact: str = "full-contact"
+    g: float = G_STANDARD
+    theta_over: float = math.pi / 2
+    rotary_inertia_ratio: float = 0.0
+    mass: float = 1.0
+    kind: str = field(default="flexible", init=False)
+
+    def __post_init__(self):
+        a = V.in_open("alpha", self.alpha, 0.0, math.pi / 2, hi_label="pi/2")
+        V.positive("p", self.p)
+        if not math.isfinite(float(self.omega_n_over_p)):
+            raise ValueError("omega_n_over_p must be finite; use fastrock.RigidBlock for a rigid body")
+        V.positive("omega_n_over_p", self.omega_n_over_p)
+        V.non_negative("zeta", self.zeta)
+        V.choice("impact", self.impact, IMPACT_MAPS)
+        V.positive("g", self.g)
+        V.non_negative("rotary_inertia_ratio", self.rotary_inertia_ratio)
+        V.positive("mass", self.mass)
+        V.in_open("theta_over", self.theta_over, a, math.pi, lo_label="alpha", hi_label="pi")
+        if self.e is None:
+            object.__setattr__(self, "e", 1.0)
+        V.in_closed("e", self.e, 0.0, 1.0)
+
+    @classmethod
+    def from_dimensions(cls, m, K, c, B, H, I_m=0.0, impact="full-contact", e=None, g=G_STANDARD,
+                        theta_over=math.pi / 2):
+        """From mass m [kg], column stiffness K [N/m] and dashpot c [N s/m],
+        base half-width B [m], mass height H [m], rotary inertia I_m [kg m^2]."""
+        m = V.positive("m", m)
+        K = V.positive("K", K)
+        c = V.non_negative("c", c)
+        B = V.positive("B", B)
+        H = V.positive("H", H)
+        I_m = V.non_negative("I_m", I_m)
+        R0 = math.hypot(B, H)
+        p = math.sqrt(m * g * R0 / (m * R0 * R0 + I_m))
+        wn = math.sqrt(K / m)
+        return cls(alpha=math.atan2(B, H), p=p, omega_n_over_p=wn / p, zeta=c / (2 * m * wn), e=e,
+                   impact=impact, g=g, theta_over=theta_over, rotary_inertia_ratio=I_m / (m * R0 * R0),
+                   mass=m)
+
+    @property
+    def R0(self):
+        return self.g / (self.p ** 2 * (1.0 + self.rotary_inertia_ratio))
+
+    @property
+    def B(self):
+        return self.R0 * math.sin(self.alpha)
+
+    @property
+    def H(self):
+        return self.R0 * math.cos(self.alpha)
+
+    @property
+    def omega_n(self):
+        return self.omega_n_over_p * self.p
+
+    @property
+    def uplift_deformation(self):
+        """Static deflection at uplift u_y [m]: H K u = m g (B - u)."""
+        wn = self.omega_n
+        return self.g * self.B / (wn * wn * self.H + self.g)
+
+    @property
+    def tan_alpha(self):
+        return math.tan(self.alpha)
+
+    def rigid_equivalent(self):
+        """The rigid block of the same alpha and p, with the restitution the
+        impact map tends to as omega_n/p -> infinity: cos^2(alpha) for the
+        full-contact map, cos(2 alpha) (times e) for the pivot switch (point
+        mass; physics.md 3.5)."""
+        if self.impact == "full-contact":
+            e = math.cos(self.alpha) ** 2
+        else:
+            k = self.rotary_inertia_ratio
+            e = self.e * (math.cos(2 * self.alpha) + k) / (1.0 + k)
+        return RigidBlock(alpha=self.alpha, p=self.p, e=e, g=self.g, theta_over=self.theta_over)

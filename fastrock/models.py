@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .bodies import RigidBlock
+from .bodies import IMPACT_MAPS, FlexibleBody, RigidBlock
 
 
 @dataclass(frozen=True)
@@ -20,6 +20,7 @@ class KernelSpec:
     n_state: int
     par: np.ndarray
     state_names: tuple
+    theta_index: int = 0
 
     def load(self):
         return importlib.import_module(f"fastrock.kernels.{self.module}")
@@ -44,6 +45,23 @@ def rigid_par(body: RigidBlock):
     return par
 
 
+def flexible_par(body: FlexibleBody):
+    from fastrock.kernels import flexible as K
+    par = np.zeros(K.N_PAR)
+    par[K.F_ALPHA] = body.alpha
+    par[K.F_P] = body.p
+    par[K.F_E] = body.e
+    par[K.F_G] = body.g
+    par[K.F_THETA_OVER] = body.theta_over
+    par[K.F_B] = body.B
+    par[K.F_H] = body.H
+    par[K.F_WN] = body.omega_n
+    par[K.F_ZETA] = body.zeta
+    par[K.F_IM] = body.rotary_inertia_ratio * body.R0 ** 2
+    par[K.F_IMPACT] = IMPACT_MAPS[body.impact]
+    return par
+
+
 def select(body, wall=None):
     """KernelSpec for a body and its contact effects."""
     if isinstance(body, RigidBlock):
@@ -55,4 +73,9 @@ def select(body, wall=None):
             raise ValueError(f"wall must be a fastrock.Wall, got {type(wall).__name__}")
         wall.fill_par(par, body)
         return KernelSpec("rigid_wall", "wall", 2, par, ("theta", "theta_dot"))
+    if isinstance(body, FlexibleBody):
+        if wall is not None:
+            raise ValueError("wall= is not available for FlexibleBody yet")
+        return KernelSpec("flexible", "flexible", 4, flexible_par(body), ("u", "u_dot", "theta", "theta_dot"),
+                          theta_index=2)
     raise ValueError(f"body must be a fastrock body (RigidBlock, ...), got {type(body).__name__}")

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -38,7 +39,22 @@ def metrics_dict(met, body):
         d[k] = int(d[k])
     d["max_rotation_ratio"] = d["max_rotation"] / body.alpha
     d["ground_impacts"] = d["impacts"]
+    if getattr(body, "kind", "") == "flexible":
+        d.update(flexible_metrics(met[None, :], body))
+        d = {k: (v[0].item() if isinstance(v, np.ndarray) else v) for k, v in d.items()}
     return d
+
+
+def flexible_metrics(MET, body):
+    """Flexible-body metrics from rows of kernel metrics (arrays)."""
+    umax = np.maximum(MET[:, L.M_MAX_U], MET[:, L.M_MIN_U])
+    return {
+        "max_deformation": umax,
+        "max_deformation_ratio": umax / body.uplift_deformation,
+        "time_rocking": MET[:, L.M_T_ROCK],
+        "time_contact": MET[:, L.M_T_CONTACT],
+        "energy_gains": np.nan_to_num(MET[:, L.M_ENERGY_GAINS]).astype(int),
+    }
 
 
 @dataclass
@@ -143,7 +159,9 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, theta0=0.0, dth
     else:
         te = np.sort(V.finite_array("t_eval", t_eval))
         cap = te.size + 2
-    y0 = np.array([theta0, dtheta0], float)
+    y0 = np.zeros(spec.n_state)
+    y0[spec.theta_index] = theta0
+    y0[spec.theta_index + 1] = dtheta0
     while True:
         y = y0.copy()
         met = np.zeros(L.N_MET)
@@ -160,13 +178,23 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, theta0=0.0, dth
     nh = int(cnt[C_NHIST])
     t = hist_t[:nh]
     ag, av = _ground_at(t, hdr, smp)
-    th = hist_y[:nh, 0]
+    ti = spec.theta_index
+    th = hist_y[:nh, ti]
     history = pd.DataFrame({
-        "t": t, "a_g": ag, "a_v": av, "theta": th, "theta_dot": hist_y[:nh, 1],
+        "t": t, "a_g": ag, "a_v": av, "theta": th, "theta_dot": hist_y[:nh, ti + 1],
         "theta_ratio": th / body.alpha,
         "contact": [MODE_NAMES.get(int(m), str(m)) for m in hist_d[:nh, 0]],
         "pivot": np.where(hist_d[:nh, 0] == L.MODE_REST, 0, hist_d[:nh, 1]),
     })
+    if spec.name == "flexible":
+        u, du = hist_y[:nh, 0], hist_y[:nh, 1]
+        wn = body.omega_n
+        history["u"] = u
+        history["u_dot"] = du
+        history["u_ratio"] = u / body.uplift_deformation
+        # elastic column force and the moment it makes at the base
+        history["base_shear"] = body.mass * (wn * wn * u + 2 * body.zeta * wn * du)
+        history["overturning_moment"] = history["base_shear"] * body.H
     nl = int(cnt[C_NLOG])
     lg = log[:nl]
     events = pd.DataFrame({
@@ -177,11 +205,15 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, theta0=0.0, dth
         "velocity_before": lg[:, L.LOG_PRE],
         "velocity_after": lg[:, L.LOG_POST],
     })
+    metrics = metrics_dict(met, body)
+    if metrics.get("energy_gains", 0) > 0:
+        warnings.warn(f"the pivot-switch (I1) impact map created energy at {metrics['energy_gains']} "
+                      "impact(s) in this run (see README, flexible bodies)", stacklevel=2)
     if cnt[C_LOG_DROPPED]:
         events.attrs["dropped"] = int(cnt[C_LOG_DROPPED])
     return SimulationResult(history=history, events=events, outcome=outcome_of(code),
                             status=status_of(code), status_code=code,
-                            metrics=metrics_dict(met, body), kernel=spec.name, body=body,
+                            metrics=metrics, kernel=spec.name, body=body,
                             excitation=excitation,
                             effects=tuple(e for e, on in (("wall", wall is not None),
                                                           ("vertical", vertical is not None)) if on))

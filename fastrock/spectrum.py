@@ -131,6 +131,10 @@ def _add_results(df, status, MET, body, wall=None):
         away = L.M_MAX_THETA_NEG if wall.side > 0 else L.M_MAX_THETA_POS
         df["max_rotation_toward_wall"] = MET[:, toward]
         df["max_rotation_away_from_wall"] = MET[:, away]
+    if getattr(body, "kind", "") == "flexible":
+        from .simulate import flexible_metrics
+        for k, v in flexible_metrics(MET, body).items():
+            df[k] = v
     df["time_uplift"] = MET[:, L.M_T_UPLIFT]
     df["time_overturn"] = MET[:, L.M_T_OVER]
     df["time_end"] = MET[:, L.M_T_FINAL]

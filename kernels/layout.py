@@ -65,7 +65,9 @@ M_T_CONTACT = 20       # s spent in full contact
 M_ENERGY_GAINS = 21    # impacts that created energy (I1 map)
 M_N_EVENTS = 22
 M_T_EXC_END = 23
-N_MET = 24
+M_T_PREV = 24         # s, time of the last bookkeeping (internal)
+M_MIN_U = 25          # m, most negative deflection (internal)
+N_MET = 32
 
 # ---- solver options vector (float64) ---------------------------------------
 O_RTOL = 0

@@ -1,0 +1,360 @@
+"""Flexible rocking body: lumped mass on an elastic column on a rigid rocking
+base (physics.md section 3; Acikgoz & DeJong 2012, Vassiliou et al. 2014/17).
+
+State ``y = (u, u', theta, theta')`` [m, m/s, rad, rad/s]: u is the elastic
+deflection of the mass perpendicular to the column.  Everything is per unit
+mass m (I_m/m = ``i_m``).  Discrete state: full contact (theta = 0, u
+oscillates) or rocking about pivot s, with the exact equations of 3.4.
+
+Events in full contact: 0 uplift (signed test of 3.3, either corner),
+1/2 extrema of u (observers), 3 flight.  While rocking: 0 impact s*theta,
+1 overturn, 2 peak s*theta', 3 pass alpha, 4/5 extrema of u, 6 flight.
+"""
+import math
+
+import numpy as np
+from numba import prange
+
+from .config import jit, jit_parallel
+from .excitation import excitation_end, ground, ground_rates
+from .hybrid import N_COUNTERS, integrate_hybrid, log_event
+from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_CONTACT, EV_FLIGHT,
+                     EV_IMPACT, EV_OVERTURN, EV_PASS_ALPHA, EV_UPLIFT, FLIGHT,
+                     M_ENERGY_GAINS, M_IMPACTS, M_MAX_U, M_MIN_U, M_T_CONTACT,
+                     M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA, M_T_PREV,
+                     M_T_ROCK, M_T_UPLIFT, MODE_REST, MODE_ROCK, N_DISC,
+                     N_LOG, N_MET, O_EARLY_EXIT, O_EPS_OMEGA, O_T0,
+                     OVERTURN_MODE1, OVERTURN_MODE2, RUNNING, SAFE_MOVING,
+                     SAFE_NO_UPLIFT, SAFE_REST)
+from .rigid import track_rotation
+
+F_ALPHA = 0
+F_P = 1
+F_E = 2          # restitution factor on theta'+ (I1 map only)
+F_G = 3
+F_THETA_OVER = 4
+F_B = 5          # m, base half-width
+F_H = 6          # m, mass height
+F_WN = 7         # rad/s, omega_n = sqrt(K/m)
+F_ZETA = 8
+F_IM = 9         # m^2, I_m / m
+F_IMPACT = 10    # 0: full contact after impact (I3), 1: pivot switch (I1)
+N_PAR = 12
+
+IMPACT_FULL_CONTACT = 0
+IMPACT_PIVOT_SWITCH = 1
+N_EVENTS = 7
+
+
+@jit
+def accelerations(t, y, s, rocking, par, hdr, smp):
+    """(u'', theta'') in full contact (rocking False) or rocking on s."""
+    ag, av = ground(t, hdr, smp)
+    G = par[F_G] + av
+    wn = par[F_WN]
+    u = y[0]
+    du = y[1]
+    fe = -wn * wn * u - 2.0 * par[F_ZETA] * wn * du
+    if not rocking:
+        return fe - ag, 0.0
+    th = y[2]
+    dth = y[3]
+    H = par[F_H]
+    r = u - s * par[F_B]
+    c = math.cos(th)
+    sn = math.sin(th)
+    X = r * c + H * sn
+    Y = -r * sn + H * c
+    fu = fe + r * dth * dth + G * sn - ag * c
+    ft = G * X - ag * Y - 2.0 * r * dth * du
+    det = r * r + par[F_IM]
+    m22 = r * r + H * H + par[F_IM]
+    return (m22 * fu - H * ft) / det, (ft - H * fu) / det
+
+
+@jit
+def rhs(t, y, par, disc, hdr, smp, out):
+    udd, tdd = accelerations(t, y, disc[D_PIVOT], disc[D_MODE] == MODE_ROCK,
+                             par, hdr, smp)
+    out[0] = y[1]
+    out[1] = udd
+    out[2] = y[3]
+    out[3] = tdd
+
+
+@jit
+def uplift_margin(t, y, s, par, hdr, smp):
+    """G (B - s u) - s H (w^2 u + 2 zeta w u') (physics.md 3.3, per unit
+    mass) and its time derivative; uplift about s when it reaches 0."""
+    ag, dag, av, dav = ground_rates(t, hdr, smp)
+    G = par[F_G] + av
+    wn = par[F_WN]
+    z = par[F_ZETA]
+    B = par[F_B]
+    H = par[F_H]
+    u = y[0]
+    du = y[1]
+    udd = -wn * wn * u - 2.0 * z * wn * du - ag
+    g = G * (B - s * u) - s * H * (wn * wn * u + 2.0 * z * wn * du)
+    gd = dav * (B - s * u) - G * s * du - s * H * (wn * wn * du +
+                                                   2.0 * z * wn * udd)
+    return g, gd
+
+
+@jit
+def event(k, t, y, par, disc, hdr, smp):
+    rocking = disc[D_MODE] == MODE_ROCK
+    s = disc[D_PIVOT]
+    if not rocking:
+        if k == 0:
+            gp, gdp = uplift_margin(t, y, 1, par, hdr, smp)
+            gm, gdm = uplift_margin(t, y, -1, par, hdr, smp)
+            if gp <= gm:
+                return gp, gdp, True
+            return gm, gdm, True
+        if k == 1 or k == 2:
+            sg = 1.0 if k == 1 else -1.0
+            udd, _ = accelerations(t, y, s, False, par, hdr, smp)
+            return sg * y[1], sg * udd, False
+        if k == 3:
+            _ag, _dag, av, dav = ground_rates(t, hdr, smp)
+            return par[F_G] + av, dav, True
+        return np.inf, 0.0, False
+    if k == 0:
+        return s * y[2], s * y[3], True
+    if k == 1:
+        return par[F_THETA_OVER] - s * y[2], -s * y[3], True
+    if k == 2:
+        _udd, tdd = accelerations(t, y, s, True, par, hdr, smp)
+        return s * y[3], s * tdd, False
+    if k == 3:
+        return par[F_ALPHA] - s * y[2], -s * y[3], False
+    if k == 4 or k == 5:
+        sg = 1.0 if k == 4 else -1.0
+        udd, _ = accelerations(t, y, s, True, par, hdr, smp)
+        return sg * y[1], sg * udd, False
+    _ag, _dag, av, dav = ground_rates(t, hdr, smp)
+    return par[F_G] + av, dav, True
+
+
+@jit
+def static_margin(t, y, par, disc, hdr, smp):
+    return 1.0   # no static phase: full contact is a dynamic phase here
+
+
+@jit
+def track_u(u, met):
+    if u > met[M_MAX_U]:
+        met[M_MAX_U] = u
+    if -u > met[M_MIN_U]:
+        met[M_MIN_U] = -u
+
+
+@jit
+def book_time(t, disc, met):
+    dt = t - met[M_T_PREV]
+    if dt > 0.0:
+        if disc[D_MODE] == MODE_ROCK:
+            met[M_T_ROCK] += dt
+        else:
+            met[M_T_CONTACT] += dt
+    met[M_T_PREV] = t
+
+
+@jit
+def kinetic(y, s, rocking, par):
+    """Kinetic energy per unit mass, rocking on s (or full contact)."""
+    if not rocking:
+        return 0.5 * y[1] * y[1]
+    r = y[0] - s * par[F_B]
+    H = par[F_H]
+    du = y[1]
+    dth = y[3]
+    return 0.5 * (du * du + 2.0 * H * du * dth
+                  + (r * r + H * H + par[F_IM]) * dth * dth)
+
+
+@jit
+def contact_or_uplift(t, y, par, disc, hdr, smp, met, log, cnt):
+    """theta = theta' = 0: full contact, then the uplift test at once."""
+    disc[D_MODE] = MODE_REST
+    gp, _ = uplift_margin(t, y, 1, par, hdr, smp)
+    gm, _ = uplift_margin(t, y, -1, par, hdr, smp)
+    if min(gp, gm) <= 0.0:
+        disc[D_MODE] = MODE_ROCK
+        disc[D_PIVOT] = 1 if gp <= gm else -1
+        if np.isnan(met[M_T_UPLIFT]):
+            met[M_T_UPLIFT] = t
+        log_event(log, cnt, t, EV_UPLIFT, y[1], y[1], 0.0, disc[D_PIVOT])
+    else:
+        log_event(log, cnt, t, EV_CONTACT, y[1], y[1], 0.0, 0)
+    return RUNNING
+
+
+@jit
+def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    rocking = disc[D_MODE] == MODE_ROCK
+    s = disc[D_PIVOT]
+    if not rocking:
+        if k == 0:
+            book_time(t, disc, met)
+            y[2] = 0.0
+            y[3] = 0.0
+            return contact_or_uplift(t, y, par, disc, hdr, smp, met, log, cnt)
+        if k == 1 or k == 2:
+            track_u(y[0], met)
+            return RUNNING
+        log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], 0.0, 0)
+        return FLIGHT
+    if k == 0:
+        book_time(t, disc, met)
+        pre = y[3]
+        met[M_IMPACTS] += 1
+        met[M_T_LAST_IMPACT] = t
+        y[2] = 0.0
+        if par[F_IMPACT] == IMPACT_PIVOT_SWITCH:
+            u = y[0]
+            H = par[F_H]
+            B = par[F_B]
+            im = par[F_IM]
+            t_before = kinetic(y, s, True, par)
+            post = par[F_E] * (H * H + u * u - B * B + im) / \
+                (H * H + (u + s * B) ** 2 + im) * pre
+            y[3] = post
+            disc[D_PIVOT] = -s
+            if kinetic(y, -s, True, par) > t_before * (1.0 + 1e-12):
+                met[M_ENERGY_GAINS] += 1
+            log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)
+            if abs(post) < opt[O_EPS_OMEGA]:
+                y[3] = 0.0
+                return contact_or_uplift(t, y, par, disc, hdr, smp, met, log,
+                                         cnt)
+            return RUNNING
+        # I3: plastic impact onto theta' = 0, horizontal momentum of the mass
+        y[1] = y[1] + par[F_H] * pre
+        y[3] = 0.0
+        log_event(log, cnt, t, EV_IMPACT, pre, 0.0, 0.0, -s)
+        return contact_or_uplift(t, y, par, disc, hdr, smp, met, log, cnt)
+    if k == 1:
+        book_time(t, disc, met)
+        met[M_T_OVER] = t
+        track_rotation(y[2], met)
+        log_event(log, cnt, t, EV_OVERTURN, y[3], y[3], y[2], s)
+        if met[M_IMPACTS] > 0:
+            return OVERTURN_MODE1
+        return OVERTURN_MODE2
+    if k == 2:
+        track_rotation(y[2], met)
+        return RUNNING
+    if k == 3:
+        if np.isnan(met[M_T_PASS_ALPHA]):
+            met[M_T_PASS_ALPHA] = t
+            log_event(log, cnt, t, EV_PASS_ALPHA, y[3], y[3], y[2], s)
+        return RUNNING
+    if k == 4 or k == 5:
+        track_u(y[0], met)
+        return RUNNING
+    log_event(log, cnt, t, EV_FLIGHT, y[3], y[3], y[2], s)
+    return FLIGHT
+
+
+@jit
+def never_uplifts_again(t, y, par, hdr):
+    """Exact sufficient test in full contact after the excitation: the
+    oscillator energy E = u'^2/2 + w^2 u^2/2 never grows (zeta >= 0), so
+    |u| <= sqrt(2E)/w and |u'| <= sqrt(2E); if even those extremes cannot
+    meet the uplift test of 3.3 the body stays in contact for good."""
+    if t < excitation_end(hdr):
+        return False
+    wn = par[F_WN]
+    E = 0.5 * y[1] * y[1] + 0.5 * wn * wn * y[0] * y[0]
+    U = math.sqrt(2.0 * E) / wn
+    V = math.sqrt(2.0 * E)
+    return par[F_H] * (wn * wn * U + 2.0 * par[F_ZETA] * wn * V) < \
+        par[F_G] * (par[F_B] - U)
+
+
+@jit
+def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
+    book_time(t, disc, met)
+    track_u(y[0], met)
+    if disc[D_MODE] == MODE_ROCK:
+        track_rotation(y[2], met)
+    if at_end:
+        if np.isnan(met[M_T_UPLIFT]):
+            return SAFE_NO_UPLIFT
+        if disc[D_MODE] == MODE_REST:
+            return SAFE_REST
+        return SAFE_MOVING
+    if opt[O_EARLY_EXIT] != 0.0 and disc[D_MODE] == MODE_REST:
+        if never_uplifts_again(t, y, par, hdr):
+            if np.isnan(met[M_T_UPLIFT]):
+                return SAFE_NO_UPLIFT
+            return SAFE_REST
+    return RUNNING
+
+
+@jit
+def init_state(t0, y, par, disc, met):
+    for i in range(N_MET):
+        met[i] = 0.0
+    met[M_T_UPLIFT] = np.nan
+    met[M_T_OVER] = np.nan
+    met[M_T_PASS_ALPHA] = np.nan
+    met[M_T_LAST_IMPACT] = -np.inf
+    met[M_T_PREV] = t0
+    for i in range(N_DISC):
+        disc[i] = 0
+    disc[D_STATIC] = 0
+    disc[D_PIVOT] = 1
+    if y[2] != 0.0 or y[3] != 0.0:
+        disc[D_MODE] = MODE_ROCK
+        if y[2] != 0.0:
+            disc[D_PIVOT] = 1 if y[2] > 0.0 else -1
+        else:
+            disc[D_PIVOT] = 1 if y[3] > 0.0 else -1
+        met[M_T_UPLIFT] = t0
+        track_rotation(y[2], met)
+    else:
+        disc[D_MODE] = MODE_REST
+    track_u(y[0], met)
+
+
+@jit
+def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
+        cnt):
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    init_state(opt[O_T0], y, par, disc, met)
+    return integrate_hybrid(rhs, event, transition, static_margin,
+                            after_step, N_EVENTS, y, par, disc, hdr, smp,
+                            opt, t_eval, met, hist_t, hist_y, hist_d, log,
+                            cnt)
+
+
+@jit
+def flexible_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                      hist_d, log, cnt):
+    """One flexible-body run with time history and event log."""
+    return run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+               log, cnt)
+
+
+@jit_parallel
+def flexible_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Independent flexible-body runs in parallel (rows of Y0/PAR/HDR/OPT)."""
+    n = Y0.shape[0]
+    for i in prange(n):
+        y = Y0[i].copy()
+        met = np.empty(N_MET)
+        t_eval = np.empty(0)
+        hist_t = np.empty(0)
+        hist_y = np.empty((0, 4))
+        hist_d = np.empty((0, 3), dtype=np.int64)
+        log = np.empty((0, N_LOG))
+        cnt = np.zeros(N_COUNTERS, dtype=np.int64)
+        status[i] = run(y, PAR[i], HDR[i], smp, OPT[i], t_eval, met, hist_t,
+                        hist_y, hist_d, log, cnt)
+        for j in range(N_MET):
+            MET[i, j] = met[j]
+        for j in range(y.shape[0]):
+            YF[i, j] = y[j]
