@@ -126,33 +126,44 @@ def _locate(event, k, terminal, phase_start, ta, tb, g0, gd0, g1, gd1,
 
     Besides a sign change at the step ends, an interior minimum of g (gdot
     goes - to +) is located and tested, so that a crossing and its return
-    inside one step (grazing) are not missed.
+    inside one step (grazing) are not missed.  Each helper is called at one
+    site only: they are inlined, and fewer copies compile faster.
     """
+    lo = ta
+    hi = tb
+    bracket = False
+    search = 0.0       # +1: look for a minimum, -1: for a maximum
     if g0 > 0.0:
         if g1 <= 0.0:
-            return _bisect_root(event, k, ta, tb, ta, h, y_old, Q, yev, par,
-                                disc, hdr, smp)
-        if gd0 < 0.0 and gd1 > 0.0:
-            tm = _bisect_extremum(event, k, ta, tb, 1.0, ta, h, y_old, Q, yev,
-                                  par, disc, hdr, smp)
-            gm, _gd, _term = _event_at(event, k, tm, ta, h, y_old, Q, yev,
-                                       par, disc, hdr, smp)
-            if gm <= 0.0:
-                return _bisect_root(event, k, ta, tm, ta, h, y_old, Q, yev,
-                                    par, disc, hdr, smp)
-        return np.inf, True
-    if terminal and phase_start and g1 <= 0.0:
+            bracket = True
+        elif gd0 < 0.0 and gd1 > 0.0:
+            search = 1.0
+    elif terminal and phase_start and g1 <= 0.0:
         # started on the surface: did it leave and come back, or never leave?
         if gd0 > 0.0 and gd1 < 0.0:
-            tm = _bisect_extremum(event, k, ta, tb, -1.0, ta, h, y_old, Q,
-                                  yev, par, disc, hdr, smp)
-            gm, _gd, _term = _event_at(event, k, tm, ta, h, y_old, Q, yev,
-                                       par, disc, hdr, smp)
+            search = -1.0
+        else:
+            return ta, True
+    else:
+        return np.inf, True
+    if search != 0.0:
+        tm = _bisect_extremum(event, k, ta, tb, search, ta, h, y_old, Q, yev,
+                              par, disc, hdr, smp)
+        gm, _gd, _term = _event_at(event, k, tm, ta, h, y_old, Q, yev, par,
+                                   disc, hdr, smp)
+        if search > 0.0 and gm <= 0.0:
+            hi = tm
+            bracket = True
+        elif search < 0.0:
             if gm > 0.0:
-                return _bisect_root(event, k, tm, tb, ta, h, y_old, Q, yev,
-                                    par, disc, hdr, smp)
-        return ta, True
-    return np.inf, True
+                lo = tm
+                bracket = True
+            else:
+                return ta, True
+    if not bracket:
+        return np.inf, True
+    return _bisect_root(event, k, lo, hi, ta, h, y_old, Q, yev, par, disc,
+                        hdr, smp)
 
 
 @jit_generic
