@@ -1,0 +1,179 @@
+"""Scenes: a body, its contact effects and an excitation, run by the
+smallest kernel they need.  Built in Python or read from TOML
+(``fastrock run scene.toml``)."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from . import _validate as V
+from .bodies import FlexibleBody, RigidBlock
+from .excitation import Pulse, SampledMotion, as_excitation
+from .solver import DEFAULT_T_AFTER, Solver
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10
+    import tomli as tomllib
+
+
+@dataclass
+class Scene:
+    """A body, contact effects and an excitation.
+
+    ``effects`` lists what the scene switches on ("flexible", "wall",
+    "vertical"); ``kernel`` names the compiled kernel that will run.  Effects
+    that are off cost nothing: their kernels are neither imported nor
+    compiled.
+    """
+
+    body: object
+    excitation: object = None
+    vertical: object = None
+    wall: object = None
+    theta0: float = 0.0
+    dtheta0: float = 0.0
+    duration: float | None = None
+    t_after: float = DEFAULT_T_AFTER
+    solver: Solver = field(default_factory=Solver)
+    name: str = ""
+    outputs: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        if not isinstance(self.body, (RigidBlock, FlexibleBody)):
+            raise ValueError(f"body must be a RigidBlock or FlexibleBody, got {type(self.body).__name__}")
+        self.excitation = as_excitation(self.excitation)
+        self.vertical = as_excitation(self.vertical)
+
+    @property
+    def effects(self):
+        out = []
+        if isinstance(self.body, FlexibleBody):
+            out.append("flexible")
+        if self.wall is not None:
+            out.append("wall")
+        if self.vertical is not None:
+            out.append("vertical")
+        return tuple(out)
+
+    @property
+    def kernel(self):
+        from .models import select
+        return select(self.body, self.wall).name
+
+    def run(self, **overrides):
+        from .simulate import simulate
+        kw = dict(vertical=self.vertical, wall=self.wall, theta0=self.theta0, dtheta0=self.dtheta0,
+                  duration=self.duration, t_after=self.t_after, solver=self.solver)
+        kw.update(overrides)
+        return simulate(self.body, self.excitation, **kw)
+
+    # ------------------------------------------------------------------ TOML
+    @classmethod
+    def from_toml(cls, path):
+        path = Path(path)
+        try:
+            with open(path, "rb") as fh:
+                data = tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"{path}: not valid TOML: {exc}") from None
+        return cls.from_dict(data, base=path.parent, name=path.stem)
+
+    @classmethod
+    def from_dict(cls, data, base=None, name=""):
+        base = Path(base or ".")
+        known = {"body", "excitation", "vertical", "wall", "solver", "run", "output", "name"}
+        unknown = set(data) - known
+        if unknown:
+            raise ValueError(f"unknown scene section(s) {sorted(unknown)}; known: {sorted(known)}")
+        if "body" not in data:
+            raise ValueError("scene: a [body] section is required")
+        body = _body(dict(data["body"]))
+        exc = _excitation(dict(data["excitation"]), base, "excitation") if "excitation" in data else None
+        vert = _excitation(dict(data["vertical"]), base, "vertical") if "vertical" in data else None
+        wall = None
+        if "wall" in data:
+            from .wall import Wall
+            wall = Wall(**_only(dict(data["wall"]), "wall", {"gap", "side", "height", "restitution"}))
+        solver = Solver(**_only(dict(data.get("solver", {})), "solver",
+                                {"rtol", "atol", "dt", "max_steps", "max_step", "record_breakpoints",
+                                 "eps_omega", "eps_t"}))
+        run = _only(dict(data.get("run", {})), "run", {"theta0", "dtheta0", "duration", "t_after"})
+        out = _only(dict(data.get("output", {})), "output", {"csv", "events", "png"})
+        out = {k: str(base / v) for k, v in out.items()}
+        return cls(body=body, excitation=exc, vertical=vert, wall=wall, solver=solver,
+                   name=data.get("name", name), outputs=out, **run)
+
+
+def _only(d, section, allowed):
+    extra = set(d) - allowed
+    if extra:
+        raise ValueError(f"[{section}]: unknown key(s) {sorted(extra)}; allowed: {sorted(allowed)}")
+    return d
+
+
+def _body(d):
+    kind = d.pop("type", "rigid")
+    if kind == "rigid":
+        if "b" in d or "h" in d:
+            return RigidBlock.rectangle(**_only(d, "body", {"b", "h", "e", "g", "theta_over"}))
+        if "I0" in d:
+            return RigidBlock.from_inertia(**_only(d, "body", {"R", "alpha", "I0", "m", "e", "g", "theta_over"}))
+        return RigidBlock(**_only(d, "body", {"alpha", "p", "e", "g", "theta_over"}))
+    if kind == "flexible":
+        if "K" in d:
+            return FlexibleBody.from_dimensions(**_only(d, "body", {"m", "K", "c", "B", "H", "I_m", "impact", "e",
+                                                                    "g", "theta_over"}))
+        return FlexibleBody(**_only(d, "body", {"alpha", "p", "omega_n_over_p", "zeta", "e", "impact", "g",
+                                                "theta_over", "rotary_inertia_ratio", "mass"}))
+    raise ValueError(f"[body] type must be 'rigid' or 'flexible', got {kind!r}")
+
+
+def _excitation(d, base, section):
+    kind = d.pop("type", "pulse")
+    if kind == "pulse":
+        return Pulse(**_only(d, section, {"amplitude", "frequency", "sign", "kind", "amplitude_unit",
+                                          "frequency_unit", "t_start", "duration"}))
+    if kind == "record":
+        from .records import load_default_record, read_record
+        d = _only(d, section, {"file", "unit", "dt", "scale", "pga_g", "t_start"})
+        f = d.get("file")
+        rec = load_default_record() if f in (None, "default") else read_record(base / f, unit=d.get("unit"),
+                                                                                 dt=d.get("dt"))
+        scale = V.finite("scale", d.get("scale", 1.0))
+        if "pga_g" in d:
+            scale = V.positive("pga_g", d["pga_g"]) / rec.pga_g
+        return SampledMotion.from_record(rec, scale=scale, t_start=d.get("t_start", 0.0))
+    raise ValueError(f"[{section}] type must be 'pulse' or 'record', got {kind!r}")
+
+
+def add_subcommand(sub):
+    p = sub.add_parser("run", help="run a scene from a TOML file")
+    p.add_argument("scene", help="scene file (TOML); see examples/scenes/")
+    p.add_argument("--csv", help="time-history CSV (overrides [output] csv)")
+    p.add_argument("--png", help="time-history figure (overrides [output] png)")
+    p.set_defaults(func=_cmd_run)
+
+
+def _cmd_run(args):
+    sc = Scene.from_toml(args.scene)
+    r = sc.run()
+    m = r.metrics
+    print(f"scene {sc.name}: effects {list(sc.effects) or ['none']}; kernel {r.kernel}")
+    print(f"outcome {r.outcome} ({r.status}); max |theta|/alpha = {m['max_rotation_ratio']:.6g}; "
+          f"impacts {m['impacts']}; nfev {m['nfev']}")
+    out = dict(sc.outputs)
+    for k in ("csv", "png"):
+        if getattr(args, k):
+            out[k] = getattr(args, k)
+    if out.get("csv"):
+        r.history.to_csv(out["csv"], index=False)
+        print(f"wrote {out['csv']}")
+    if out.get("events"):
+        r.events.to_csv(out["events"], index=False)
+        print(f"wrote {out['events']}")
+    if out.get("png"):
+        r.plot().savefig(out["png"], dpi=130)
+        print(f"wrote {out['png']}")
+    return 0
