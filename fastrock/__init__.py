@@ -9,6 +9,7 @@ from .excitation import Pulse, SampledMotion
 from .solver import Solver
 from .simulate import SimulationResult, simulate
 from .spectrum import overturning_spectrum
+from .foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation, simulate_foundation
 
 __all__ = [
     "RigidBlock", "FlexibleBody", "housner_restitution", "Pulse", "SampledMotion", "Solver",

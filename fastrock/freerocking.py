@@ -1213,14 +1213,8 @@ def fit_free_rocking(half_cycle_durations, theta0, alpha, peaks=None, model="hou
     if not isinstance(model, str):
         raise ValueError(f"model must be a string; got {model!r}")
     if predictor is None and model != "housner":
-        if model in _FOUNDATION_MODELS:
-            raise NotImplementedError(
-                f"model {model!r} has no built-in predictor yet (the foundation-model "
-                f"simulation kernels are not available); pass predictor=callable(params, "
-                f"n_half_cycles) -> durations")
-        raise NotImplementedError(
-            f"unknown model {model!r}: only 'housner' is built in; pass a predictor callable "
-            f"to fit other models")
+        from .foundation import get_predictor     # raises NotImplementedError if unknown
+        predictor = get_predictor(model)
     first = _first_index(definition)
     alpha = float(_check_alpha(alpha))
     durs = _as_groups(half_cycle_durations, "half_cycle_durations")

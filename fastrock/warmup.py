@@ -22,7 +22,17 @@ def _wall():
     _rigid(Wall(gap=0.01))
 
 
-MODELS = {"rigid": _rigid, "wall": _wall}
+def _foundation():
+    from .bodies import RigidBlock
+    from .foundation import (LinearVibration, SwitchingFoundation, TwoSpringFoundation,
+                             simulate_foundation)
+    b = RigidBlock.rectangle(b=0.1, h=0.5)
+    for f in (TwoSpringFoundation.from_vibration(b, 30.0, 0.05),
+              SwitchingFoundation.from_vibration(b, 30.0, 0.05), LinearVibration(10.0, 0.1)):
+        simulate_foundation(b, f, theta0=0.05, duration=0.5)
+
+
+MODELS = {"rigid": _rigid, "wall": _wall, "foundation": _foundation}
 
 
 def warmup(models=None):

@@ -1,0 +1,656 @@
+"""Rigid block on a flexible foundation: rocking against vibration (physics.md 5).
+
+Three models, each with entry kernels ``<name>_simulate`` (same signature as
+``rigid_simulate``) and ``<name>_sweep`` (like ``rigid_sweep``):
+
+``two_spring`` (physics.md 5.1, the reference)
+    State ``y = (y_c, y_c', q, q')`` [m, m/s, rad, rad/s]: vertical
+    displacement of the base centre (horizontally fixed) and rotation.
+    Corner spring-dashpots ``k_v, c_v`` at ``x = +-b``; compression of corner
+    ``s`` (+1 right, -1 left) ``delta_s = -(y_c - s b sin q)``; force
+    ``f_s = k_v delta_s + c_v delta_s'`` while the corner is in contact, 0
+    while it is free.  A corner in contact becomes free when its force
+    reaches 0 (lift-off, possibly with ``delta_s > 0``: the dashpot lets go
+    first); a free corner re-contacts when ``delta_s >= 0`` and
+    ``k_v delta_s + c_v delta_s' >= 0`` (soft contact, no impact map).
+    Modes: both corners (MODE_REST, "contact"), one corner (MODE_ROCK,
+    D_PIVOT = that corner), none (MODE_FLIGHT; the base centre stays
+    horizontally fixed, as in the model).  An "impact" is the re-contact of
+    a corner that landed from above (``delta_s`` crossing 0 upward with
+    ``delta_s' >= 0``); a released corner that presses again without having
+    left the spring's surface is logged as "contact", not as an impact.
+    With ``E = T + M g y_G + sum_s k_v max(delta_s, 0)^2 / 2`` the free
+    motion satisfies ``dE/dt = -sum c_v delta_s'^2 <= 0`` in contact and
+    ``k_v delta_s delta_s' < 0`` for a released corner, so E never grows.
+
+``switching`` (physics.md 5.2)
+    State ``(theta, theta')``.  Contact phase (MODE_REST) about the base
+    centre: ``I_C theta'' + c_t theta' + k_t theta - M G h sin theta =
+    -M h a_g cos theta``.  Uplift when ``|k_t theta + c_t theta'| >= M G b``
+    with pivot ``s = sgn(k_t theta + c_t theta')``; rocking (MODE_ROCK) is
+    Housner's equation (``kernels.rigid.theta_ddot``) with the total
+    rotation; back to contact when ``s theta <= theta_y`` while
+    ``s theta' <= 0``, with ``theta'+ = e_f theta'-`` (an "impact").
+
+``linear_sdof``
+    State ``(theta, theta')``: ``I_C theta'' + c_t theta' + k_t theta =
+    -M h a_g`` (reference vibration model; never lifts off).
+
+Every model also has a terminal zero-crossing event of the rotation (its
+transition snaps the rotation to exactly 0, so a stored history holds the
+exact crossing times that half-cycle analysis needs), an overturning event
+``|theta| >= theta_over`` (not for linear_sdof), and observers for peaks and
+for the first passage of ``|theta| = alpha``.
+
+Parameters ``par`` (indices P_*): the first entries are the rigid layout
+(``alpha, p, e, g, theta_over``; ``p^2 = M g R / I_0``, so that
+``rigid.theta_ddot`` serves the rocking phase), then the body and the
+foundation in SI units (kg, m, N/m, N s/m, N m/rad, N m s/rad).  The front
+end fills every entry, derived ones included (``I_C, I_0, theta_y``).
+
+Status at the end of a run: SAFE_NO_UPLIFT (never lifted off), SAFE_REST
+(lifted off, ended in full contact -- vibrating on the foundation or at
+rest), SAFE_MOVING (ended lifted off), OVERTURN_MODE1/2 (after / without a
+re-contact impact), FLIGHT (switching model only: G <= 0 while rocking).
+"""
+import math
+
+import numpy as np
+from numba import prange
+
+from .config import jit, jit_parallel
+from .excitation import ground, ground_rates
+from .hybrid import N_COUNTERS, integrate_hybrid, log_event
+from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_CONTACT, EV_FLIGHT,
+                     EV_IMPACT, EV_PASS_ALPHA, EV_UPLIFT, FLIGHT, M_IMPACTS,
+                     M_T_CONTACT, M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA,
+                     M_T_PREV, M_T_ROCK, M_T_UPLIFT, MODE_FLIGHT, MODE_REST,
+                     MODE_ROCK, N_DISC, N_LOG, N_MET, O_T0, RUNNING,
+                     SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
+from .rigid import (N_PAR as N_RIGID_PAR, P_ALPHA, P_G, P_P, P_THETA_OVER,
+                    overturned, theta_ddot, track_rotation)
+
+# ---- parameter layout (rigid entries 0..N_RIGID_PAR-1 first) ---------------
+P_MASS = N_RIGID_PAR + 0    # kg
+P_I_G = N_RIGID_PAR + 1     # kg m^2, centroidal inertia
+P_B = N_RIGID_PAR + 2       # m, half-width (corner at x = +-b)
+P_H = N_RIGID_PAR + 3       # m, height of the centre of mass above the base
+P_KV = N_RIGID_PAR + 4      # N/m, corner spring (two_spring)
+P_CV = N_RIGID_PAR + 5      # N s/m, corner dashpot (two_spring)
+P_KT = N_RIGID_PAR + 6      # N m/rad, rotational spring (switching, linear)
+P_CT = N_RIGID_PAR + 7      # N m s/rad, rotational dashpot
+P_EF = N_RIGID_PAR + 8      # -, restitution at re-contact (switching)
+P_THETA_Y = N_RIGID_PAR + 9  # rad, M g b / k_t (switching)
+P_I_C = N_RIGID_PAR + 10    # kg m^2, I_G + M h^2 (inertia about the base centre)
+P_I_0 = N_RIGID_PAR + 11    # kg m^2, I_G + M R^2 (inertia about a corner)
+N_PAR = N_RIGID_PAR + 14
+
+# ---- discrete state (model-specific use of the free slots) -----------------
+D_SIDE = 5       # sign of the rotation for the zero-crossing event (0: none yet)
+D_RIGHT = 6      # two_spring: 1 while the right corner is in contact
+D_LEFT = 7       # two_spring: 1 while the left corner is in contact
+
+# below this |theta| [rad] a run that starts exactly upright has no side yet
+THETA_SIDE_EPS = 1e-12
+
+
+# ============================================================== shared pieces
+@jit
+def account_time(t, disc, met):
+    """Attribute the time since the last bookkeeping to the current mode."""
+    dt = t - met[M_T_PREV]
+    if dt > 0.0:
+        if disc[D_MODE] == MODE_REST:
+            met[M_T_CONTACT] += dt
+        elif disc[D_MODE] == MODE_ROCK:
+            met[M_T_ROCK] += dt
+    met[M_T_PREV] = t
+
+
+@jit
+def cross_event(theta, dtheta, disc):
+    """Zero crossing of the rotation: g = side * theta (terminal)."""
+    sd = disc[D_SIDE]
+    if sd == 0:
+        a = abs(theta)
+        return THETA_SIDE_EPS - a, -dtheta if theta > 0.0 else dtheta
+    return sd * theta, sd * dtheta
+
+
+@jit
+def cross_transition(y, i_theta, disc):
+    """Flip the side; snap theta to exactly 0 (the root is within 4 ulp)."""
+    if disc[D_SIDE] == 0:
+        disc[D_SIDE] = 1 if y[i_theta] > 0.0 else -1
+    else:
+        disc[D_SIDE] = -disc[D_SIDE]
+        y[i_theta] = 0.0
+
+
+@jit
+def init_side(theta, dtheta, disc):
+    if theta != 0.0:
+        disc[D_SIDE] = 1 if theta > 0.0 else -1
+    elif dtheta != 0.0:
+        disc[D_SIDE] = 1 if dtheta > 0.0 else -1
+    else:
+        disc[D_SIDE] = 0
+
+
+@jit
+def observe_rotation(obs, t, theta, dtheta, disc, par, met, log, cnt):
+    """Observers: obs 0 = peak (exact maximum), 1 = first |theta| > alpha."""
+    if obs == 0:
+        track_rotation(theta, met)
+    elif np.isnan(met[M_T_PASS_ALPHA]):
+        met[M_T_PASS_ALPHA] = t
+        log_event(log, cnt, t, EV_PASS_ALPHA, dtheta, dtheta, theta,
+                  disc[D_PIVOT])
+
+
+@jit
+def init_metrics(t0, met):
+    for i in range(N_MET):
+        met[i] = 0.0
+    met[M_T_UPLIFT] = np.nan
+    met[M_T_OVER] = np.nan
+    met[M_T_PASS_ALPHA] = np.nan
+    met[M_T_LAST_IMPACT] = -np.inf
+    met[M_T_PREV] = t0
+
+
+@jit
+def mark_uplift(t, theta, dtheta, pivot, met, log, cnt):
+    if np.isnan(met[M_T_UPLIFT]):
+        met[M_T_UPLIFT] = t
+    log_event(log, cnt, t, EV_UPLIFT, dtheta, dtheta, theta, pivot)
+
+
+@jit
+def final_status(disc, met):
+    if np.isnan(met[M_T_UPLIFT]):
+        return SAFE_NO_UPLIFT
+    if disc[D_MODE] == MODE_REST:
+        return SAFE_REST
+    return SAFE_MOVING
+
+
+# ============================================================ (a) two springs
+TS_N_EVENTS = 6
+TS_RIGHT = 0        # corner switch, right
+TS_LEFT = 1         # corner switch, left
+TS_CROSS = 2        # q = 0
+TS_OVERTURN = 3     # |q| = theta_over
+TS_PEAK = 4         # observer: q' = 0 on the current side
+TS_PASS_ALPHA = 5   # observer: |q| = alpha
+
+
+@jit
+def corner_compression(y, side, par):
+    """(delta, delta') of corner ``side`` [m, m/s]."""
+    b = par[P_B]
+    sq = math.sin(y[2])
+    cq = math.cos(y[2])
+    return -(y[0] - side * b * sq), -(y[1] - side * b * cq * y[3])
+
+
+@jit
+def corner_force(y, side, par, in_contact):
+    if in_contact == 0:
+        return 0.0
+    d, dd = corner_compression(y, side, par)
+    return par[P_KV] * d + par[P_CV] * dd
+
+
+@jit
+def ts_accelerations(t, y, par, disc, hdr, smp):
+    """(y_c'', q'') from the 2x2 mass system of physics.md 5.1."""
+    ag, av = ground(t, hdr, smp)
+    G = par[P_G] + av
+    M = par[P_MASS]
+    h = par[P_H]
+    b = par[P_B]
+    IC = par[P_I_C]
+    fR = corner_force(y, 1.0, par, disc[D_RIGHT])
+    fL = corner_force(y, -1.0, par, disc[D_LEFT])
+    sq = math.sin(y[2])
+    cq = math.cos(y[2])
+    ry = fR + fL - M * G + M * h * cq * y[3] * y[3]
+    rq = M * G * h * sq - M * h * ag * cq - b * cq * (fR - fL)
+    mh = M * h * sq
+    det = M * IC - mh * mh
+    return (IC * ry + mh * rq) / det, (mh * ry + M * rq) / det
+
+
+@jit
+def ts_rhs(t, y, par, disc, hdr, smp, out):
+    ydd, qdd = ts_accelerations(t, y, par, disc, hdr, smp)
+    out[0] = y[1]
+    out[1] = ydd
+    out[2] = y[3]
+    out[3] = qdd
+
+
+@jit
+def ts_corner_event(side, in_contact, t, y, par, disc, hdr, smp):
+    k = par[P_KV]
+    c = par[P_CV]
+    d, dd = corner_compression(y, side, par)
+    ydd, qdd = ts_accelerations(t, y, par, disc, hdr, smp)
+    b = par[P_B]
+    sq = math.sin(y[2])
+    cq = math.cos(y[2])
+    ddd = -(ydd - side * b * (cq * qdd - sq * y[3] * y[3]))
+    f = k * d + c * dd
+    fdot = k * dd + c * ddd
+    if in_contact != 0:
+        return f, fdot
+    # free: stays free while delta < 0 or the spring-dashpot would pull
+    if c * dd >= 0.0:
+        return -k * d, -k * dd
+    return -f, -fdot
+
+
+@jit
+def ts_event(k, t, y, par, disc, hdr, smp):
+    if k == TS_RIGHT:
+        g, gd = ts_corner_event(1.0, disc[D_RIGHT], t, y, par, disc, hdr, smp)
+        return g, gd, True
+    if k == TS_LEFT:
+        g, gd = ts_corner_event(-1.0, disc[D_LEFT], t, y, par, disc, hdr, smp)
+        return g, gd, True
+    if k == TS_CROSS:
+        g, gd = cross_event(y[2], y[3], disc)
+        return g, gd, True
+    if k == TS_OVERTURN:
+        sg = 1.0 if y[2] >= 0.0 else -1.0
+        return par[P_THETA_OVER] - sg * y[2], -sg * y[3], True
+    if k == TS_PEAK:
+        sd = disc[D_SIDE]
+        if sd == 0:
+            return np.inf, 0.0, False
+        _ydd, qdd = ts_accelerations(t, y, par, disc, hdr, smp)
+        return sd * y[3], sd * qdd, False
+    sg = 1.0 if y[2] >= 0.0 else -1.0
+    return par[P_ALPHA] - sg * y[2], -sg * y[3], False
+
+
+@jit
+def ts_set_mode(disc):
+    r = disc[D_RIGHT]
+    lf = disc[D_LEFT]
+    if r != 0 and lf != 0:
+        disc[D_MODE] = MODE_REST
+        disc[D_PIVOT] = 0
+    elif r != 0:
+        disc[D_MODE] = MODE_ROCK
+        disc[D_PIVOT] = 1
+    elif lf != 0:
+        disc[D_MODE] = MODE_ROCK
+        disc[D_PIVOT] = -1
+    else:
+        disc[D_MODE] = MODE_FLIGHT
+        disc[D_PIVOT] = 0
+
+
+@jit
+def ts_corner_transition(side, slot, t, y, par, disc, met, log, cnt):
+    if disc[slot] != 0:
+        disc[slot] = 0
+        ts_set_mode(disc)
+        if disc[D_MODE] == MODE_FLIGHT:
+            log_event(log, cnt, t, EV_FLIGHT, y[3], y[3], y[2], side)
+        else:
+            mark_uplift(t, y[2], y[3], disc[D_PIVOT], met, log, cnt)
+        return RUNNING
+    _d, dd = corner_compression(y, side, par)
+    disc[slot] = 1
+    ts_set_mode(disc)
+    if par[P_CV] * dd >= 0.0:
+        # landed from above: the analogue of a Housner impact
+        met[M_IMPACTS] += 1
+        met[M_T_LAST_IMPACT] = t
+        log_event(log, cnt, t, EV_IMPACT, y[3], y[3], y[2], side)
+    else:
+        log_event(log, cnt, t, EV_CONTACT, y[3], y[3], y[2], side)
+    return RUNNING
+
+
+@jit
+def ts_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    account_time(t, disc, met)
+    if k == TS_RIGHT:
+        return ts_corner_transition(1.0, D_RIGHT, t, y, par, disc, met, log,
+                                    cnt)
+    if k == TS_LEFT:
+        return ts_corner_transition(-1.0, D_LEFT, t, y, par, disc, met, log,
+                                    cnt)
+    if k == TS_CROSS:
+        cross_transition(y, 2, disc)
+        return RUNNING
+    if k == TS_OVERTURN:
+        return overturned(t, y[2:], disc, met, log, cnt)
+    observe_rotation(k - TS_PEAK, t, y[2], y[3], disc, par, met, log, cnt)
+    return RUNNING
+
+
+@jit
+def never_static(t, y, par, disc, hdr, smp):
+    return np.inf
+
+
+@jit
+def ts_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
+    track_rotation(y[2], met)
+    account_time(t, disc, met)
+    if at_end:
+        return final_status(disc, met)
+    return RUNNING
+
+
+@jit
+def ts_initial_contact(y, side, par):
+    d, dd = corner_compression(y, side, par)
+    if d >= 0.0 and par[P_KV] * d + par[P_CV] * dd > 0.0:
+        return 1
+    return 0
+
+
+@jit
+def ts_init(t0, y, par, disc, met):
+    """Corner states from the initial y: a corner is in contact iff
+    delta >= 0 and k_v delta + c_v delta' > 0."""
+    init_metrics(t0, met)
+    for i in range(N_DISC):
+        disc[i] = 0
+    disc[D_RIGHT] = ts_initial_contact(y, 1.0, par)
+    disc[D_LEFT] = ts_initial_contact(y, -1.0, par)
+    ts_set_mode(disc)
+    init_side(y[2], y[3], disc)
+    if disc[D_MODE] != MODE_REST:
+        met[M_T_UPLIFT] = t0
+    track_rotation(y[2], met)
+
+
+@jit
+def two_spring_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                   hist_d, log, cnt):
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    ts_init(opt[O_T0], y, par, disc, met)
+    return integrate_hybrid(ts_rhs, ts_event, ts_transition, never_static,
+                            ts_after_step, TS_N_EVENTS, y, par, disc, hdr,
+                            smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+                            log, cnt)
+
+
+# ========================================================== (b) switching
+SW_N_EVENTS = 6
+SW_SWITCH = 0       # contact: uplift; rock: return to contact
+SW_CROSS = 1
+SW_OVERTURN = 2
+SW_FLIGHT = 3       # G <= 0 while rocking
+SW_PEAK = 4
+SW_PASS_ALPHA = 5
+
+
+@jit
+def sw_contact_ddot(t, theta, dtheta, par, hdr, smp):
+    ag, av = ground(t, hdr, smp)
+    G = par[P_G] + av
+    M = par[P_MASS]
+    h = par[P_H]
+    return (-par[P_CT] * dtheta - par[P_KT] * theta
+            + M * G * h * math.sin(theta)
+            - M * h * ag * math.cos(theta)) / par[P_I_C]
+
+
+@jit
+def sw_ddot(t, y, par, disc, hdr, smp):
+    if disc[D_MODE] == MODE_ROCK:
+        return theta_ddot(t, y[0], disc[D_PIVOT], par, hdr, smp)
+    return sw_contact_ddot(t, y[0], y[1], par, hdr, smp)
+
+
+@jit
+def sw_rhs(t, y, par, disc, hdr, smp, out):
+    out[0] = y[1]
+    out[1] = sw_ddot(t, y, par, disc, hdr, smp)
+
+
+@jit
+def sw_event(k, t, y, par, disc, hdr, smp):
+    if k == SW_SWITCH:
+        if disc[D_MODE] == MODE_ROCK:
+            s = disc[D_PIVOT]
+            # back to contact once s theta <= theta_y while s theta' <= 0
+            g1 = s * y[0] - par[P_THETA_Y]
+            g2 = s * y[1] / par[P_P]
+            if g1 >= g2:
+                return g1, s * y[1], True
+            return g2, s * sw_ddot(t, y, par, disc, hdr, smp) / par[P_P], True
+        ag, dag, av, dav = ground_rates(t, hdr, smp)
+        m = par[P_KT] * y[0] + par[P_CT] * y[1]
+        dm = par[P_KT] * y[1] + par[P_CT] * sw_ddot(t, y, par, disc, hdr, smp)
+        sm = 1.0 if m >= 0.0 else -1.0
+        Mb = par[P_MASS] * par[P_B]
+        return Mb * (par[P_G] + av) - sm * m, Mb * dav - sm * dm, True
+    if k == SW_CROSS:
+        g, gd = cross_event(y[0], y[1], disc)
+        return g, gd, True
+    if k == SW_OVERTURN:
+        sg = 1.0 if y[0] >= 0.0 else -1.0
+        return par[P_THETA_OVER] - sg * y[0], -sg * y[1], True
+    if k == SW_FLIGHT:
+        if disc[D_MODE] != MODE_ROCK:
+            return np.inf, 0.0, True
+        _ag, _dag, av, dav = ground_rates(t, hdr, smp)
+        return par[P_G] + av, dav, True
+    if k == SW_PEAK:
+        sd = disc[D_SIDE]
+        if sd == 0:
+            return np.inf, 0.0, False
+        return sd * y[1], sd * sw_ddot(t, y, par, disc, hdr, smp), False
+    sg = 1.0 if y[0] >= 0.0 else -1.0
+    return par[P_ALPHA] - sg * y[0], -sg * y[1], False
+
+
+@jit
+def sw_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    account_time(t, disc, met)
+    if k == SW_SWITCH:
+        if disc[D_MODE] == MODE_ROCK:
+            pre = y[1]
+            y[1] = par[P_EF] * pre
+            disc[D_MODE] = MODE_REST
+            met[M_IMPACTS] += 1
+            met[M_T_LAST_IMPACT] = t
+            log_event(log, cnt, t, EV_IMPACT, pre, y[1], y[0], disc[D_PIVOT])
+            disc[D_PIVOT] = 0
+            return RUNNING
+        m = par[P_KT] * y[0] + par[P_CT] * y[1]
+        disc[D_MODE] = MODE_ROCK
+        disc[D_PIVOT] = 1 if m >= 0.0 else -1
+        mark_uplift(t, y[0], y[1], disc[D_PIVOT], met, log, cnt)
+        return RUNNING
+    if k == SW_CROSS:
+        cross_transition(y, 0, disc)
+        return RUNNING
+    if k == SW_OVERTURN:
+        return overturned(t, y, disc, met, log, cnt)
+    if k == SW_FLIGHT:
+        log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], y[0], disc[D_PIVOT])
+        return FLIGHT
+    observe_rotation(k - SW_PEAK, t, y[0], y[1], disc, par, met, log, cnt)
+    return RUNNING
+
+
+@jit
+def sw_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
+    track_rotation(y[0], met)
+    account_time(t, disc, met)
+    if at_end:
+        return final_status(disc, met)
+    return RUNNING
+
+
+@jit
+def sw_init(t0, y, par, disc, hdr, smp, met):
+    """Rocking from the start iff the uplift test holds at the initial state."""
+    init_metrics(t0, met)
+    for i in range(N_DISC):
+        disc[i] = 0
+    _ag, av = ground(t0, hdr, smp)
+    m = par[P_KT] * y[0] + par[P_CT] * y[1]
+    if abs(m) >= par[P_MASS] * (par[P_G] + av) * par[P_B] and m != 0.0:
+        disc[D_MODE] = MODE_ROCK
+        disc[D_PIVOT] = 1 if m > 0.0 else -1
+        met[M_T_UPLIFT] = t0
+    else:
+        disc[D_MODE] = MODE_REST
+    init_side(y[0], y[1], disc)
+    track_rotation(y[0], met)
+
+
+@jit
+def switching_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+                  log, cnt):
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    sw_init(opt[O_T0], y, par, disc, hdr, smp, met)
+    return integrate_hybrid(sw_rhs, sw_event, sw_transition, never_static,
+                            sw_after_step, SW_N_EVENTS, y, par, disc, hdr,
+                            smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+                            log, cnt)
+
+
+# ====================================================== (c) linear vibration
+LS_N_EVENTS = 2
+LS_CROSS = 0
+LS_PEAK = 1
+
+
+@jit
+def ls_ddot(t, theta, dtheta, par, hdr, smp):
+    ag, _av = ground(t, hdr, smp)
+    return (-par[P_CT] * dtheta - par[P_KT] * theta
+            - par[P_MASS] * par[P_H] * ag) / par[P_I_C]
+
+
+@jit
+def ls_rhs(t, y, par, disc, hdr, smp, out):
+    out[0] = y[1]
+    out[1] = ls_ddot(t, y[0], y[1], par, hdr, smp)
+
+
+@jit
+def ls_event(k, t, y, par, disc, hdr, smp):
+    if k == LS_CROSS:
+        g, gd = cross_event(y[0], y[1], disc)
+        return g, gd, True
+    sd = disc[D_SIDE]
+    if sd == 0:
+        return np.inf, 0.0, False
+    return sd * y[1], sd * ls_ddot(t, y[0], y[1], par, hdr, smp), False
+
+
+@jit
+def ls_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    account_time(t, disc, met)
+    if k == LS_CROSS:
+        cross_transition(y, 0, disc)
+    else:
+        track_rotation(y[0], met)
+    return RUNNING
+
+
+@jit
+def ls_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
+    track_rotation(y[0], met)
+    account_time(t, disc, met)
+    if at_end:
+        return SAFE_NO_UPLIFT
+    return RUNNING
+
+
+@jit
+def linear_sdof_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                    hist_d, log, cnt):
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    init_metrics(opt[O_T0], met)
+    disc[D_MODE] = MODE_REST
+    init_side(y[0], y[1], disc)
+    track_rotation(y[0], met)
+    return integrate_hybrid(ls_rhs, ls_event, ls_transition, never_static,
+                            ls_after_step, LS_N_EVENTS, y, par, disc, hdr,
+                            smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+                            log, cnt)
+
+
+# ---------------------------------------------------------------- entries
+@jit
+def two_spring_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                        hist_d, log, cnt):
+    """One two-spring run, y = (y_c, y_c', q, q'), with history and log."""
+    return two_spring_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                          hist_d, log, cnt)
+
+
+@jit
+def switching_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                       hist_d, log, cnt):
+    """One switching-SDOF run, y = (theta, theta'), with history and log."""
+    return switching_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                         hist_d, log, cnt)
+
+
+@jit
+def linear_sdof_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                         hist_d, log, cnt):
+    """One linear-SDOF run, y = (theta, theta'), with history and log."""
+    return linear_sdof_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                           hist_d, log, cnt)
+
+
+@jit
+def _no_output(n_state):
+    return (np.empty(0), np.empty(0), np.empty((0, n_state)),
+            np.empty((0, 3), dtype=np.int64), np.empty((0, N_LOG)),
+            np.zeros(N_COUNTERS, dtype=np.int64))
+
+
+@jit_parallel
+def two_spring_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Many independent two-spring runs in parallel (see rigid_sweep)."""
+    for i in prange(Y0.shape[0]):
+        y = Y0[i].copy()
+        met = np.empty(N_MET)
+        t_eval, hist_t, hist_y, hist_d, log, cnt = _no_output(y.shape[0])
+        status[i] = two_spring_run(y, PAR[i], HDR[i], smp, OPT[i], t_eval,
+                                   met, hist_t, hist_y, hist_d, log, cnt)
+        MET[i, :] = met
+        YF[i, :] = y
+
+
+@jit_parallel
+def switching_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Many independent switching-SDOF runs in parallel (see rigid_sweep)."""
+    for i in prange(Y0.shape[0]):
+        y = Y0[i].copy()
+        met = np.empty(N_MET)
+        t_eval, hist_t, hist_y, hist_d, log, cnt = _no_output(y.shape[0])
+        status[i] = switching_run(y, PAR[i], HDR[i], smp, OPT[i], t_eval, met,
+                                  hist_t, hist_y, hist_d, log, cnt)
+        MET[i, :] = met
+        YF[i, :] = y
+
+
+@jit_parallel
+def linear_sdof_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Many independent linear-SDOF runs in parallel (see rigid_sweep)."""
+    for i in prange(Y0.shape[0]):
+        y = Y0[i].copy()
+        met = np.empty(N_MET)
+        t_eval, hist_t, hist_y, hist_d, log, cnt = _no_output(y.shape[0])
+        status[i] = linear_sdof_run(y, PAR[i], HDR[i], smp, OPT[i], t_eval,
+                                    met, hist_t, hist_y, hist_d, log, cnt)
+        MET[i, :] = met
+        YF[i, :] = y
