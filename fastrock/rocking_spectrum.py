@@ -199,10 +199,18 @@ def _read_one(path, unit=None, dt=None):
     state them (so one --unit serves a mixed set of files)."""
     try:
         return read_record(path)
-    except ValueError:
+    except ValueError as exc:
         if unit is None and dt is None:
             raise
-    return read_record(path, unit=unit, dt=dt)
+        first = exc
+    tries = [kw for kw in ({"unit": unit, "dt": dt}, {"unit": unit}, {"dt": dt})
+             if all(v is not None for v in kw.values())]
+    for kw in tries:
+        try:
+            return read_record(path, **kw)
+        except ValueError as exc:
+            first = exc if kw is tries[0] else first
+    raise first
 
 
 def load_records(records, unit=None, dt=None):

@@ -580,3 +580,22 @@ def test_rocking_spectrum_with_walls(el_centro):
                  early_exit=True)
     assert r.outcome == run["outcome"]
     assert RS.parse_walls("two-sided,0.01")[1] == Wall(0.01)
+
+
+def test_cli_record_single_column_file_needs_unit_and_dt(capsys, tmp_path):
+    from fastrock.cli import main
+    f = tmp_path / "pulse.txt"
+    t = np.arange(201) * 0.005
+    np.savetxt(f, 0.4 * np.sin(2 * np.pi * t))           # one 1 Hz sine, 0.4 g
+    png = str(tmp_path / "p.png")
+    assert main(["record", str(f), "--unit", "g", "--png", png]) == 2
+    assert "dt" in capsys.readouterr().err
+    assert main(["record", str(f), "--unit", "g", "--dt", "0.005", "--png", png]) == 0
+    out = capsys.readouterr().out
+    assert "PGA = 0.4 g" in out and "201 points, dt = 0.005 s" in out
+
+
+def test_default_record_when_none(el_centro):
+    table = rocking_spectrum(None, [0.2, 0.4], [0.3], walls=(None,), progress=False)
+    assert table["record"].tolist() == [el_centro.name]
+    assert table["pga_g"].iloc[0] == el_centro.pga_g
