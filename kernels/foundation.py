@@ -160,6 +160,13 @@ def init_metrics(t0, met):
 
 
 @jit
+def init_pass_alpha(t0, theta, par, met):
+    """A release beyond alpha has passed the unstable equilibrium at t0."""
+    if abs(theta) > par[P_ALPHA]:
+        met[M_T_PASS_ALPHA] = t0
+
+
+@jit
 def mark_uplift(t, theta, dtheta, pivot, met, log, cnt):
     if np.isnan(met[M_T_UPLIFT]):
         met[M_T_UPLIFT] = t
@@ -369,6 +376,7 @@ def ts_init(t0, y, par, disc, met):
     init_side(y[2], y[3], disc)
     if disc[D_MODE] != MODE_REST:
         met[M_T_UPLIFT] = t0
+    init_pass_alpha(t0, y[2], par, met)
     track_rotation(y[2], met)
 
 
@@ -508,6 +516,7 @@ def sw_init(t0, y, par, disc, hdr, smp, met):
     else:
         disc[D_MODE] = MODE_REST
     init_side(y[0], y[1], disc)
+    init_pass_alpha(t0, y[0], par, met)
     track_rotation(y[0], met)
 
 
