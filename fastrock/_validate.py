@@ -5,6 +5,8 @@ import numpy as np
 
 
 def finite(name, value):
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be a real number, got the boolean {value!r}")
     try:
         v = float(value)
     except (TypeError, ValueError):

@@ -58,7 +58,11 @@ class RigidBlock:
         V.positive("g", self.g)
         V.in_open("theta_over", self.theta_over, a, math.pi, lo_label="alpha", hi_label="pi")
         if self.e is None:
-            object.__setattr__(self, "e", housner_restitution(a))
+            e = housner_restitution(a)
+            if e < 0.0:
+                raise ValueError(f"Housner's default restitution e = 1 - 1.5 sin^2(alpha) = {e:.3f} is negative "
+                                 f"for alpha = {a} > 0.955 rad (a squat block); give e explicitly")
+            object.__setattr__(self, "e", e)
         V.in_closed("e", self.e, 0.0, 1.0)
         for nm in ("b", "h"):
             if getattr(self, nm) is not None:

@@ -134,6 +134,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, theta0=0.0, dth
         kw["max_steps"] = max_steps
     if record_breakpoints is not None:
         kw["record_breakpoints"] = record_breakpoints
+    spec = models.select(body, wall)
     solver = make_solver(solver, rtol, atol, dt, **kw)
     excitation = X.as_excitation(excitation)
     vertical = X.as_excitation(vertical)
@@ -141,7 +142,6 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, theta0=0.0, dth
     dtheta0 = V.finite("dtheta0", dtheta0)
     if abs(theta0) >= body.theta_over:
         raise ValueError(f"theta0 must satisfy |theta0| < theta_over = {body.theta_over}, got {theta0}")
-    spec = models.select(body, wall)
     if wall is not None:
         wall.check_initial(theta0, body)
     t_exc = X.end_time(body, excitation, vertical)

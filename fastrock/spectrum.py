@@ -38,6 +38,8 @@ def _grid(values, name):
     a = np.atleast_1d(V.finite_array(name, np.atleast_1d(values)))
     if (a < 0).any():
         raise ValueError(f"{name} must be >= 0")
+    for v in a:
+        V.finite(name, v)   # magnitude and denormal checks
     return a
 
 
@@ -84,9 +86,9 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     freqs = _grid(frequency_ratios, "frequency_ratios")
     if (freqs <= 0).any():
         raise ValueError("frequency_ratios must be > 0")
+    spec = models.select(body, wall)
     signs = _signs(sign)
     t_after = V.non_negative("t_after", t_after)
-    spec = models.select(body, wall)
     S, F, A = np.meshgrid(np.array(signs, float), freqs, amps, indexing="ij")
     S, F, A = S.ravel(), F.ravel(), A.ravel()
     n = A.size

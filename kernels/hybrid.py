@@ -18,6 +18,7 @@ into the model's entry kernel:
     of a static phase (``disc[D_STATIC] == 1``: the state is frozen and only
     ``static_margin`` of the excitation can end it).
 ``static_margin(t, y, par, disc, hdr, smp) -> g``
+    the static phase ends when g becomes negative (strictly).
 ``after_step(t, y, par, disc, hdr, smp, opt, met, at_end) -> status``
     metrics after an accepted step, early decisions, and the final status.
 
@@ -30,7 +31,7 @@ from .config import jit, jit_generic, next_up, ulp
 from .dopri import (N_STAGES, dense_coefficients, dense_eval, error_norm,
                     rk_step, select_initial_step, step_factor)
 from .excitation import excitation_end, next_breakpoint, scan_origin, scan_step
-from .layout import (D_STATIC, FAIL_NONFINITE, FAIL_OUTPUT_FULL,
+from .layout import (D_STATIC, FAIL_EVENT, FAIL_NONFINITE, FAIL_OUTPUT_FULL,
                      FAIL_STEP_BUDGET, FAIL_STEP_UNDERFLOW, FAIL_TRANSITIONS,
                      LOG_KIND, LOG_PIVOT, LOG_POST, LOG_PRE, LOG_T, LOG_THETA,
                      M_N_EVENTS, M_NFEV, M_NREJECT, M_NSTEPS, M_T_EXC_END,
@@ -140,7 +141,8 @@ def _locate(event, k, terminal, phase_start, ta, tb, g0, gd0, g1, gd1,
             search = 1.0
     elif terminal and phase_start and g1 <= 0.0:
         # started on the surface: did it leave and come back, or never leave?
-        if gd0 > 0.0 and gd1 < 0.0:
+        # gd0 == 0: released from rest (uplift), it may rise and fall back
+        if gd0 >= 0.0 and gd1 < 0.0:
             search = -1.0
         else:
             return ta, True
@@ -168,10 +170,10 @@ def _locate(event, k, terminal, phase_start, ta, tb, g0, gd0, g1, gd1,
 
 @jit_generic
 def _static_exit(static_margin, t, t_stop, y, par, disc, hdr, smp):
-    """First time in [t, t_stop] at which the static margin reaches <= 0,
+    """First time in [t, t_stop] at which the static margin becomes < 0,
     scanning a grid on which pulse extrema and record samples lie."""
     g = static_margin(t, y, par, disc, hdr, smp)
-    if g <= 0.0:
+    if g < 0.0:
         return t
     hs = scan_step(hdr)
     if not np.isfinite(hs) or hs <= 0.0:
@@ -187,14 +189,14 @@ def _static_exit(static_margin, t, t_stop, y, par, disc, hdr, smp):
         if tk > t_stop:
             tk = t_stop
         g = static_margin(tk, y, par, disc, hdr, smp)
-        if g <= 0.0:
+        if g < 0.0:
             hi = tk
             for _ in range(MAX_BISECT):
                 tol = 4.0 * EPS * max(abs(hi), 1.0)
                 if hi - lo <= tol:
                     break
                 mid = 0.5 * (lo + hi)
-                if static_margin(mid, y, par, disc, hdr, smp) > 0.0:
+                if static_margin(mid, y, par, disc, hdr, smp) >= 0.0:
                     lo = mid
                 else:
                     hi = mid
@@ -392,6 +394,7 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
             dense_coefficients(K, Q)
             t_term = np.inf
             k_term = -1
+            event_failed = False
             for k in range(n_events):
                 roots[k] = np.inf
                 if not np.isfinite(g0[k]) and not np.isfinite(g1[k]):
@@ -399,10 +402,15 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                 r, ok = _locate(event, k, term[k], phase_start, t, t_new,
                                 g0[k], gd0[k], g1[k], gd1[k], y_old, h, Q,
                                 yev, par, disc, hdr, smp)
+                if not ok:
+                    event_failed = True
                 roots[k] = r
                 if term[k] and r < t_term:
                     t_term = r
                     k_term = k
+            if event_failed:
+                status = FAIL_EVENT
+                break
             for k in range(n_events):
                 if (not term[k]) and roots[k] <= t_term and \
                         np.isfinite(roots[k]):

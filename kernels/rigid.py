@@ -80,7 +80,8 @@ def event(k, t, y, par, disc, hdr, smp):
 
 @jit
 def static_margin(t, y, par, disc, hdr, smp):
-    """Full contact holds while |a_g| <= G tan(alpha) (physics.md 1)."""
+    """Full contact holds while |a_g| <= G tan(alpha) (physics.md 1); the
+    static phase ends when this margin becomes negative."""
     ag, av = ground(t, hdr, smp)
     return (par[P_G] + av) * math.tan(par[P_ALPHA]) - abs(ag)
 
@@ -104,7 +105,7 @@ def start_rocking_or_rest(t, y, par, disc, hdr, smp, met, log, cnt):
     if G <= 0.0:
         log_event(log, cnt, t, EV_FLIGHT, 0.0, 0.0, y[0], disc[D_PIVOT])
         return FLIGHT
-    if abs(ag) >= G * math.tan(par[P_ALPHA]) and ag != 0.0:
+    if abs(ag) > G * math.tan(par[P_ALPHA]):
         disc[D_MODE] = MODE_ROCK
         disc[D_STATIC] = 0
         disc[D_PIVOT] = -1 if ag > 0.0 else 1
@@ -201,13 +202,15 @@ def free_energy(y, s, par):
 def bounded_after_excitation(t, y, par, disc, hdr, met):
     """Early decision once the excitation is over (exact, not a heuristic):
     free rocking conserves energy between impacts and impacts multiply it
-    by e^2 <= 1, so energy below the barrier 1 - cos(alpha) can never pass
-    |theta| = alpha.  The next two peaks follow in closed form and are
+    by e^2 <= 1, so a block inside the well (|theta| < alpha) with energy
+    below the barrier 1 - cos(alpha) can never pass |theta| = alpha.  The next two peaks follow in closed form and are
     folded into the metrics; later peaks are lower.  Returns True if safe."""
     if t < excitation_end(hdr):
         return False
     s = disc[D_PIVOT]
     a = par[P_ALPHA]
+    if not s * y[0] < a:
+        return False     # past the unstable equilibrium: outside the well
     E = free_energy(y, s, par)
     if not E < 1.0 - math.cos(a):
         return False

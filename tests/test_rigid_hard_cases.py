@@ -54,20 +54,12 @@ def test_grazing_below_uplift_level(w_ratio, kind):
     assert res.events.empty
 
 
-GRAZING_BUG = pytest.mark.xfail(strict=True, raises=AssertionError, reason=(
-    "kernels/hybrid.py _locate, phase-start branch: a rocking phase that starts at uplift has "
-    "theta = theta' = 0, so g0 = s*theta = 0 and gd0 = s*theta' = 0; when the first step ends "
-    "with s*theta <= 0 (the excess over g tan(alpha) is tiny and |a_g| is already falling) the "
-    "test 'gd0 > 0 and gd1 < 0' fails and _locate returns ta: an impact at the uplift instant "
-    "with theta'- = 0, chatter-to-rest, start_rocking_or_rest (kernels/rigid.py, which uplifts "
-    "on |a_g| >= G tan(alpha)) re-uplifts at the same t, and after 200 zero-length transitions "
-    "the run ends 'failed:transition-loop'"))
 
 
 @pytest.mark.parametrize("w_ratio", [
     0.5,
-    pytest.param(2.0, marks=GRAZING_BUG),
-    pytest.param(7.0, marks=GRAZING_BUG),
+    2.0,
+    7.0,
 ])
 def test_grazing_uplift_comes_back_to_rest(w_ratio):
     ratio = 1 + 1e-9
@@ -82,8 +74,8 @@ def test_grazing_uplift_comes_back_to_rest(w_ratio):
 
 
 @pytest.mark.parametrize("ratio", [
-    pytest.param(1.0, marks=GRAZING_BUG),
-    pytest.param(1 + 1e-12, marks=GRAZING_BUG),
+    1.0,
+    1 + 1e-12,
 ])
 def test_uplift_level_exactly(ratio):
     """At |a_g| = G tan(alpha) (or a hair above) the run must still end definitely; at exactly

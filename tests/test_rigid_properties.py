@@ -220,11 +220,7 @@ def test_property_early_exit_only_after_the_excitation(alpha, p, ratio, w_ratio,
         assert free_energy(last["theta"], last["theta_dot"], alpha, p) < 1 - math.cos(alpha)
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError, reason=(
-    "kernels/rigid.py bounded_after_excitation declares SAFE_BOUNDED from the energy alone; a "
-    "block already past alpha at the pulse end (energy below 1 - cos(alpha) there) is reported "
-    "safe although it overturns (see test_rigid_vs_solve_ivp.py)"))
-# derandomized (a strict xfail must fail deterministically) and without shrinking (cost)
+# derandomized and without shrinking (cost)
 @settings(deadline=None, max_examples=30, derandomize=True, database=None,
           phases=[Phase.explicit, Phase.generate], report_multiple_bugs=False)
 @given(alpha=st.floats(0.05, 0.5), p=ps,

@@ -218,14 +218,6 @@ def test_spectrum_matches_solve_ivp_reference(body, reference):
     assert n == len(SIGNS) * len(FREQS) * len(AMPS)
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError, reason=(
-    "kernels/rigid.py bounded_after_excitation: the early decision SAFE_BOUNDED only checks the "
-    "free-rocking energy E < 1 - cos(alpha), not that the block is inside the potential well "
-    "(s*theta < alpha).  A block past alpha at the end of the excitation has "
-    "V = cos(s theta - alpha) - cos(alpha) < 1 - cos(alpha) and is declared safe although it "
-    "overturns.  On this grid 6 of 60 cells (a_p/(g tan alpha), omega_p/p) = (1.55, 1.1), "
-    "(2.9, 2.3), (4.2, 2.3), both signs, are mode2 in the reference and with early_exit=False "
-    "but 'safe:bounded' with early_exit=True"))
 def test_early_exit_spectrum_matches_solve_ivp_reference(body, reference):
     spec = _spectrum(body, early_exit=True)
     mismatches, d_ratio, d_tover, _n = _compare(reference, spec)
@@ -234,9 +226,6 @@ def test_early_exit_spectrum_matches_solve_ivp_reference(body, reference):
     assert d_tover <= 1e-6, d_tover
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError, reason=(
-    "same bug as test_early_exit_spectrum_matches_solve_ivp_reference: kernels/rigid.py "
-    "bounded_after_excitation ignores s*theta > alpha"))
 def test_early_exit_equals_full_run(body):
     full = _spectrum(body, early_exit=False)
     early = _spectrum(body, early_exit=True)
