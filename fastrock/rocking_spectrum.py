@@ -336,10 +336,11 @@ def _rows_sweep(records, rec_idx, b, s, wall_idx, walls, *, e, solver, t_after, 
     args = (records, rec_idx, specs, solver, t_after)
     status, MET, YF, interrupted = _sweep_arrays(*args, early_exit, progress, chunk_size)
     if early_exit:
-        # Guard: an early "safe:bounded" decision must leave the block inside
-        # its potential well (|theta| < alpha); the kernel's energy test alone
-        # does not check that (tests/test_rigid_vs_solve_ivp.py, xfail).
-        # Such rows are rerun to the end.
+        # Defensive check: an early "safe:bounded" decision must leave the
+        # block inside its potential well (|theta| < alpha).  The kernel
+        # checks this since commit 4e2366c (before, its energy test alone
+        # declared blocks past alpha safe); should it ever not, such rows are
+        # rerun to the end here.
         bad = np.flatnonzero((status == L.SAFE_BOUNDED) & (np.abs(YF[:, 0]) >= alpha))
         if bad.size:
             sub = (records, rec_idx[bad], [specs[i] for i in bad], solver, t_after)
@@ -543,8 +544,8 @@ def rocking_spectrum(records, slenderness=None, half_widths=None, walls=None, *,
     early_exit : bool
         Stop a run once its outcome is decided (default True).  On records
         the shaking itself dominates the cost, so this saves only a few per
-        cent; a "safe:bounded" decision that leaves the block past alpha is
-        rerun to the end (guard against a known kernel issue).
+        cent; a "safe:bounded" decision that leaves the block past alpha
+        would be rerun to the end (defensive check).
     stable_outcomes : tuple of str
         Outcomes counted as stable (default ``("safe",)``).
     progress : bool
