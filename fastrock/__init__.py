@@ -9,10 +9,12 @@ from .excitation import Pulse, SampledMotion
 from .solver import Solver
 from .simulate import SimulationResult, simulate
 from .spectrum import overturning_spectrum
+from .friction import Friction
+from .records import GroundMotion, read_record
 from .foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation, simulate_foundation
 
 __all__ = [
     "RigidBlock", "FlexibleBody", "housner_restitution", "Pulse", "SampledMotion", "Solver",
-    "SimulationResult", "simulate", "overturning_spectrum",
+    "SimulationResult", "simulate", "overturning_spectrum", "Friction", "GroundMotion", "read_record",
 ]
 __version__ = "0.1.0"

@@ -26,6 +26,13 @@ def _wall(args):
                 restitution=args.wall_restitution)
 
 
+def _friction(args):
+    if getattr(args, "mu_s", None) is None:
+        return None
+    from .friction import Friction
+    return Friction(args.mu_s, args.mu_k)
+
+
 def _add_body_options(p):
     g = p.add_argument_group("body (rigid block)")
     g.add_argument("--alpha", type=float, default=0.25, help="slenderness angle alpha [rad] (default 0.25)")
@@ -40,6 +47,9 @@ def _add_body_options(p):
                         "toward it (default -1)")
     w.add_argument("--wall-height", type=float, help="wall height [m] (default: taller than the block)")
     w.add_argument("--wall-restitution", type=float, default=1.0, help="wall restitution e_w (default 1)")
+    f = p.add_argument_group("friction (sliding)")
+    f.add_argument("--mu-s", type=float, help="static friction coefficient (default: no sliding)")
+    f.add_argument("--mu-k", type=float, help="kinetic friction coefficient (default mu_s)")
 
 
 def _add_solver_options(p):
@@ -58,7 +68,7 @@ def cmd_spectrum(args):
     amps = np.linspace(args.amp_min, args.amp_max, args.n_amp)
     freqs = np.linspace(args.freq_min, args.freq_max, args.n_freq)
     t0 = time.perf_counter()
-    df = overturning_spectrum(body, amps, freqs, sign=signs, pulse=args.pulse, wall=wall,
+    df = overturning_spectrum(body, amps, freqs, sign=signs, pulse=args.pulse, wall=wall, friction=_friction(args),
                               rtol=args.rtol, atol=args.atol, dt=args.dt, progress=not args.quiet)
     el = time.perf_counter() - t0
     df.to_csv(args.csv, index=False)
@@ -82,7 +92,7 @@ def cmd_simulate(args):
     body = _body(args)
     pulse = Pulse(amplitude=args.amplitude, frequency=args.frequency, sign=args.sign, kind=args.pulse,
                   amplitude_unit=args.amplitude_unit, frequency_unit=args.frequency_unit)
-    r = simulate(body, pulse, wall=_wall(args), theta0=args.theta0, rtol=args.rtol, atol=args.atol,
+    r = simulate(body, pulse, wall=_wall(args), friction=_friction(args), theta0=args.theta0, rtol=args.rtol, atol=args.atol,
                  dt=args.dt, duration=args.duration)
     m = r.metrics
     print(f"outcome {r.outcome} ({r.status}); kernel {r.kernel}")

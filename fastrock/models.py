@@ -62,8 +62,41 @@ def flexible_par(body: FlexibleBody):
     return par
 
 
-def select(body, wall=None):
-    """KernelSpec for a body and its contact effects."""
+def rigid_friction_par(body: RigidBlock, friction):
+    from fastrock.kernels import friction as K
+    par = np.zeros(K.N_PAR)
+    par[: len(rigid_par(body))] = rigid_par(body)
+    if body.b is not None and body.h is not None:
+        b, h = body.b, body.h
+    else:   # a rectangle of the given alpha and p
+        R = 3.0 * body.g / (4.0 * body.p ** 2)
+        b, h = R * np.sin(body.alpha), R * np.cos(body.alpha)
+    R2 = b * b + h * h
+    par[K.Q_B] = b
+    par[K.Q_H] = h
+    par[K.Q_IG] = body.g * np.sqrt(R2) / body.p ** 2 - R2
+    par[K.Q_MU_S] = friction.mu_s
+    par[K.Q_MU_K] = friction.mu_k
+    return par
+
+
+def select(body, wall=None, friction=None):
+    """KernelSpec for a body and its contact effects (the smallest kernel:
+    no wall, infinite friction or a rigid body costs nothing)."""
+    if friction is not None:
+        from .friction import Friction
+        if not isinstance(friction, Friction):
+            raise ValueError(f"friction must be a fastrock.Friction, got {type(friction).__name__}")
+        if not friction.sliding_possible:
+            friction = None
+    if friction is not None:
+        if not isinstance(body, RigidBlock):
+            raise ValueError("friction= is implemented for RigidBlock only so far (flexible bodies with "
+                             "sliding are not available yet)")
+        if wall is not None:
+            raise ValueError("friction= together with wall= is not available yet")
+        return KernelSpec("rigid_friction", "friction", 4, rigid_friction_par(body, friction),
+                          ("theta", "theta_dot", "d", "d_dot"))
     if isinstance(body, RigidBlock):
         par = rigid_par(body)
         if wall is None:

@@ -32,6 +32,7 @@ class Scene:
     excitation: object = None
     vertical: object = None
     wall: object = None
+    friction: object = None
     theta0: float = 0.0
     dtheta0: float = 0.0
     duration: float | None = None
@@ -53,6 +54,8 @@ class Scene:
             out.append("flexible")
         if self.wall is not None:
             out.append("wall")
+        if self.friction is not None and self.friction.sliding_possible:
+            out.append("friction")
         if self.vertical is not None:
             out.append("vertical")
         return tuple(out)
@@ -60,11 +63,11 @@ class Scene:
     @property
     def kernel(self):
         from .models import select
-        return select(self.body, self.wall).name
+        return select(self.body, self.wall, self.friction).name
 
     def run(self, **overrides):
         from .simulate import simulate
-        kw = dict(vertical=self.vertical, wall=self.wall, theta0=self.theta0, dtheta0=self.dtheta0,
+        kw = dict(vertical=self.vertical, wall=self.wall, friction=self.friction, theta0=self.theta0, dtheta0=self.dtheta0,
                   duration=self.duration, t_after=self.t_after, solver=self.solver)
         kw.update(overrides)
         return simulate(self.body, self.excitation, **kw)
@@ -83,7 +86,7 @@ class Scene:
     @classmethod
     def from_dict(cls, data, base=None, name=""):
         base = Path(base or ".")
-        known = {"body", "excitation", "vertical", "wall", "solver", "run", "output", "name"}
+        known = {"body", "excitation", "vertical", "wall", "friction", "solver", "run", "output", "name"}
         unknown = set(data) - known
         if unknown:
             raise ValueError(f"unknown scene section(s) {sorted(unknown)}; known: {sorted(known)}")
@@ -96,13 +99,17 @@ class Scene:
         if "wall" in data:
             from .wall import Wall
             wall = Wall(**_only(dict(data["wall"]), "wall", {"gap", "side", "height", "restitution"}))
+        friction = None
+        if "friction" in data:
+            from .friction import Friction
+            friction = Friction(**_only(dict(data["friction"]), "friction", {"mu_s", "mu_k", "slide_tolerance"}))
         solver = Solver(**_only(dict(data.get("solver", {})), "solver",
                                 {"rtol", "atol", "dt", "max_steps", "max_step", "record_breakpoints",
                                  "eps_omega", "eps_t"}))
         run = _only(dict(data.get("run", {})), "run", {"theta0", "dtheta0", "duration", "t_after"})
         out = _only(dict(data.get("output", {})), "output", {"csv", "events", "png"})
         out = {k: str(base / v) for k, v in out.items()}
-        return cls(body=body, excitation=exc, vertical=vert, wall=wall, solver=solver,
+        return cls(body=body, excitation=exc, vertical=vert, wall=wall, friction=friction, solver=solver,
                    name=data.get("name", name), outputs=out, **run)
 
 

@@ -45,6 +45,17 @@ def metrics_dict(met, body):
     return d
 
 
+def friction_metrics(MET):
+    """Sliding metrics from rows of kernel metrics (arrays, m and s)."""
+    return {
+        "max_slide": MET[:, L.M_MAX_SLIDE],
+        "residual_slide": MET[:, L.M_RESIDUAL_SLIDE],
+        "time_sliding": MET[:, L.M_T_SLIDE],
+        "time_slide_rocking": MET[:, L.M_T_SLIDE_ROCK],
+        "stick_slip": np.nan_to_num(MET[:, L.M_N_STICK_SLIP]),
+    }
+
+
 def flexible_metrics(MET, body):
     """Flexible-body metrics from rows of kernel metrics (arrays)."""
     umax = np.maximum(MET[:, L.M_MAX_U], MET[:, L.M_MIN_U])
@@ -97,7 +108,7 @@ class SimulationResult:
         return plot_history(self, **kw)
 
 
-def simulate(body, excitation=None, *, vertical=None, wall=None, theta0=0.0, dtheta0=0.0,
+def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, theta0=0.0, dtheta0=0.0,
              duration=None, t_after=DEFAULT_T_AFTER, t_eval=None, solver=None, rtol=None,
              atol=None, dt=None, early_exit=False, max_steps=None, record_breakpoints=None,
              history_capacity=None):
@@ -113,6 +124,9 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, theta0=0.0, dth
         Vertical ground acceleration a_v (effective gravity G = g + a_v).
     wall : Wall, optional
         One-sided rocking against a rear wall.
+    friction : Friction, optional
+        Coulomb friction (sliding and slide-rocking); None or mu_s = inf:
+        no sliding degree of freedom at all.
     theta0, dtheta0 : float
         Initial rotation [rad] and angular velocity [rad/s].
     duration : float, optional
@@ -134,7 +148,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, theta0=0.0, dth
         kw["max_steps"] = max_steps
     if record_breakpoints is not None:
         kw["record_breakpoints"] = record_breakpoints
-    spec = models.select(body, wall)
+    spec = models.select(body, wall, friction)
     solver = make_solver(solver, rtol, atol, dt, **kw)
     excitation = X.as_excitation(excitation)
     vertical = X.as_excitation(vertical)
@@ -195,6 +209,9 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, theta0=0.0, dth
         # elastic column force and the moment it makes at the base
         history["base_shear"] = body.mass * (wn * wn * u + 2 * body.zeta * wn * du)
         history["overturning_moment"] = history["base_shear"] * body.H
+    if spec.name == "rigid_friction":
+        history["d"] = hist_y[:nh, 2]
+        history["d_dot"] = hist_y[:nh, 3]
     nl = int(cnt[C_NLOG])
     lg = log[:nl]
     events = pd.DataFrame({
@@ -206,16 +223,24 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, theta0=0.0, dth
         "velocity_after": lg[:, L.LOG_POST],
     })
     metrics = metrics_dict(met, body)
+    outcome = outcome_of(code)
+    if spec.name == "rigid_friction":
+        metrics.update({k: float(v[0]) for k, v in friction_metrics(met[None, :]).items()})
+        metrics["stick_slip"] = int(metrics["stick_slip"])
+        if outcome == "safe" and abs(metrics["residual_slide"]) > friction.slide_tolerance:
+            outcome = "slide"
     if metrics.get("energy_gains", 0) > 0:
         warnings.warn(f"the pivot-switch (I1) impact map created energy at {metrics['energy_gains']} "
                       "impact(s) in this run (see README, flexible bodies)", stacklevel=2)
     if cnt[C_LOG_DROPPED]:
         events.attrs["dropped"] = int(cnt[C_LOG_DROPPED])
-    return SimulationResult(history=history, events=events, outcome=outcome_of(code),
+    return SimulationResult(history=history, events=events, outcome=outcome,
                             status=status_of(code), status_code=code,
                             metrics=metrics, kernel=spec.name, body=body,
                             excitation=excitation,
-                            effects=tuple(e for e, on in (("wall", wall is not None),
+                            effects=tuple(e for e, on in (("flexible", spec.name == "flexible"),
+                                                          ("friction", spec.name == "rigid_friction"),
+                                                          ("wall", wall is not None),
                                                           ("vertical", vertical is not None)) if on))
 
 

@@ -31,6 +31,8 @@ time_uplift         first uplift                             [s]
 time_overturn       overturning time (NaN if safe)           [s]
 time_end            time at which the run stopped            [s]
 nfev                right-hand-side evaluations
+max_slide, residual_slide  max |d| and final d (with friction)  [m]
+time_sliding, time_slide_rocking, stick_slip  (with friction)
 """
 
 
@@ -54,7 +56,7 @@ def _signs(sign):
 
 
 def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, pulse="one-sine",
-                         wall=None, solver=None, rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
+                         wall=None, friction=None, solver=None, rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
                          early_exit=True, chunk_size=None, progress=True):
     """Overturning spectrum of a body under pulses, in parallel.
 
@@ -70,6 +72,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     pulse : str
         "one-sine" (default), "half-sine", "one-cosine".
     wall : Wall, optional
+    friction : Friction, optional
+        Adds the outcome "slide" and the columns max_slide, residual_slide [m].
     early_exit : bool
         Stop a run once its outcome is decided (exact; see README).
     progress : bool
@@ -86,7 +90,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     freqs = _grid(frequency_ratios, "frequency_ratios")
     if (freqs <= 0).any():
         raise ValueError("frequency_ratios must be > 0")
-    spec = models.select(body, wall)
+    spec = models.select(body, wall, friction)
     signs = _signs(sign)
     t_after = V.non_negative("t_after", t_after)
     S, F, A = np.meshgrid(np.array(signs, float), freqs, amps, indexing="ij")
@@ -113,15 +117,21 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         "amplitude_ratio": A, "frequency_ratio": F, "sign": S.astype(int),
         "amplitude": amp, "amplitude_g": amp / body.g, "frequency_hz": omega / (2 * np.pi),
     })
-    df = _add_results(df, status, MET, body, wall)
+    df = _add_results(df, status, MET, body, wall, friction if spec.name == "rigid_friction" else None)
     df = df.iloc[:done].reset_index(drop=True)
     df.attrs.update(interrupted=done < n, kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e,
                     pulse=pulse, solver=solver.name)
     return df
 
 
-def _add_results(df, status, MET, body, wall=None):
+def _add_results(df, status, MET, body, wall=None, friction=None):
     df["outcome"] = [outcome_of(c) for c in status]
+    if friction is not None:
+        from .simulate import friction_metrics
+        for k, v in friction_metrics(MET).items():
+            df[k] = v
+        slid = (df["outcome"] == "safe") & (df["residual_slide"].abs() > friction.slide_tolerance)
+        df.loc[slid, "outcome"] = "slide"
     df["status"] = [status_of(c) for c in status]
     df["max_rotation_ratio"] = MET[:, L.M_MAX_ABS_THETA] / body.alpha
     df["max_rotation"] = MET[:, L.M_MAX_ABS_THETA]

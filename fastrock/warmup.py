@@ -32,7 +32,19 @@ def _foundation():
         simulate_foundation(b, f, theta0=0.05, duration=0.5)
 
 
-MODELS = {"rigid": _rigid, "wall": _wall, "foundation": _foundation}
+def _friction():
+    from .bodies import RigidBlock
+    from .excitation import Pulse
+    from .friction import Friction
+    from .simulate import simulate
+    from .spectrum import overturning_spectrum
+    b = RigidBlock(alpha=0.2, p=2.0)
+    simulate(b, Pulse(3.0, 2.0, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p"),
+             friction=Friction(0.3), duration=1.0)
+    overturning_spectrum(b, [3.0], [2.0], friction=Friction(0.3), progress=False)
+
+
+MODELS = {"rigid": _rigid, "friction": _friction, "wall": _wall, "foundation": _foundation}
 
 
 def warmup(models=None):

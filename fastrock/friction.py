@@ -1,0 +1,41 @@
+"""Coulomb friction at the base (physics.md section 4)."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from . import _validate as V
+
+DEFAULT_SLIDE_TOLERANCE = 1e-3   # m
+
+
+@dataclass(frozen=True)
+class Friction:
+    """Static and kinetic friction coefficients.
+
+    ``Friction(mu_s, mu_k=None)``: ``mu_k`` defaults to ``mu_s``; mu_k <= mu_s.
+    ``mu_s = inf`` means no sliding: the scene then runs the frictionless
+    kernel and pays nothing for friction.  ``slide_tolerance`` [m]: a safe run
+    whose residual slip exceeds it has outcome "slide" (default 1 mm).
+    """
+
+    mu_s: float
+    mu_k: float | None = None
+    slide_tolerance: float = DEFAULT_SLIDE_TOLERANCE
+
+    def __post_init__(self):
+        if isinstance(self.mu_s, bool):
+            raise ValueError("mu_s must be a number")
+        if not (isinstance(self.mu_s, (int, float)) and math.isinf(self.mu_s) and self.mu_s > 0):
+            V.non_negative("mu_s", self.mu_s)
+        if self.mu_k is None:
+            object.__setattr__(self, "mu_k", float(self.mu_s))
+        elif not (math.isinf(self.mu_k) and math.isinf(self.mu_s)):
+            V.non_negative("mu_k", self.mu_k)
+        if self.mu_k > self.mu_s:
+            raise ValueError(f"mu_k must be <= mu_s, got mu_k={self.mu_k}, mu_s={self.mu_s}")
+        V.non_negative("slide_tolerance", self.slide_tolerance)
+
+    @property
+    def sliding_possible(self):
+        return math.isfinite(self.mu_s)

@@ -1,0 +1,427 @@
+"""Rigid block with Coulomb friction: rest, slide, rock, slide-rock
+(physics.md 4.1-4.3; Shenton 1996, Taniguchi 2002).
+
+State ``y = (theta, theta', d, d')``: rotation [rad] and the slip d [m] of
+the base relative to the ground.  Per unit mass, with the CM offset from the
+pivot s, X_G = -s b cos(theta) + h sin(theta), Y_G = s b sin(theta) + h
+cos(theta) (physics.md 4.3):
+
+    a_g + d'' + Y_G theta'' - X_G theta'^2 = F
+    -X_G theta'' - Y_G theta'^2          = N - G
+    i_G theta''                          = -Y_G F + X_G N
+
+Stick: d'' = 0 and F unknown; slip: F = -mu_k sigma N.  Modes: REST
+(static), SLIDE (theta = 0), ROCK (stick) and SLIDE_ROCK.  No regularised
+friction law: every transition is an event.
+
+Events (g > 0 admissible):
+  ROCK        0 impact s*theta, 1 overturn, 2 slip onset mu_s N - |F|,
+              3 lift-off N, 4 peak s*theta' (observer), 5 pass alpha (obs.)
+  SLIDE_ROCK  0 impact, 1 overturn, 2 stick sigma*d', 3 lift-off N, 4, 5
+  SLIDE       2 stick sigma*d', 3 flight G
+"""
+import math
+
+import numpy as np
+from numba import prange
+
+from .config import jit, jit_parallel
+from .excitation import ground, ground_rates
+from .hybrid import N_COUNTERS, integrate_hybrid, log_event
+from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
+                     EV_IMPACT, EV_OVERTURN, EV_PASS_ALPHA, EV_REST, EV_SLIP,
+                     EV_STICK, EV_UPLIFT, FLIGHT, M_IMPACTS, M_MAX_SLIDE,
+                     M_N_STICK_SLIP, M_RESIDUAL_SLIDE, M_T_LAST_IMPACT,
+                     M_T_OVER, M_T_PASS_ALPHA, M_T_PREV, M_T_ROCK,
+                     M_T_SLIDE, M_T_SLIDE_ROCK, M_T_UPLIFT, MODE_REST,
+                     MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK, N_DISC, N_LOG,
+                     N_MET, O_EPS_OMEGA, O_EPS_T, O_T0, OVERTURN_MODE1,
+                     OVERTURN_MODE2, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT,
+                     SAFE_REST)
+from .rigid import P_ALPHA, P_E, P_G, P_THETA_OVER, track_rotation
+
+Q_B = 10        # m, half-width
+Q_H = 11        # m, half-height (CM height above the base)
+Q_IG = 12       # m^2, I_G / M
+Q_MU_S = 13
+Q_MU_K = 14
+N_PAR = 16
+N_EVENTS = 6
+
+
+@jit
+def offsets(theta, s, par):
+    b = par[Q_B]
+    h = par[Q_H]
+    c = math.cos(theta)
+    sn = math.sin(theta)
+    return -s * b * c + h * sn, s * b * sn + h * c
+
+
+@jit
+def stick_rock(t, theta, dtheta, s, par, hdr, smp):
+    """(theta'', F, N) per unit mass, rocking on s without slip."""
+    ag, av = ground(t, hdr, smp)
+    G = par[P_G] + av
+    X, Y = offsets(theta, s, par)
+    i0 = par[Q_IG] + X * X + Y * Y
+    tdd = (G * X - ag * Y) / i0
+    F = ag + Y * tdd - X * dtheta * dtheta
+    N = G - X * tdd - Y * dtheta * dtheta
+    return tdd, F, N
+
+
+@jit
+def slip_rock(t, theta, dtheta, s, sigma, par, hdr, smp):
+    """(theta'', d'', N) per unit mass, rocking on s and slipping toward
+    sigma with F = -mu_k sigma N."""
+    ag, av = ground(t, hdr, smp)
+    G = par[P_G] + av
+    X, Y = offsets(theta, s, par)
+    k = par[Q_MU_K] * sigma * Y + X
+    tdd = k * (G - Y * dtheta * dtheta) / (par[Q_IG] + k * X)
+    N = G - X * tdd - Y * dtheta * dtheta
+    dd = -par[Q_MU_K] * sigma * N - ag - Y * tdd + X * dtheta * dtheta
+    return tdd, dd, N
+
+
+@jit
+def rhs(t, y, par, disc, hdr, smp, out):
+    mode = disc[D_MODE]
+    s = disc[D_PIVOT]
+    out[0] = y[1]
+    out[2] = y[3]
+    if mode == MODE_ROCK:
+        tdd, _F, _N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
+        out[1] = tdd
+        out[3] = 0.0
+    elif mode == MODE_SLIDE_ROCK:
+        tdd, dd, _N = slip_rock(t, y[0], y[1], s, disc[D_SLIP_DIR], par, hdr,
+                                smp)
+        out[1] = tdd
+        out[3] = dd
+    else:   # SLIDE
+        ag, av = ground(t, hdr, smp)
+        out[1] = 0.0
+        out[3] = -ag - par[Q_MU_K] * disc[D_SLIP_DIR] * (par[P_G] + av)
+
+
+@jit
+def event(k, t, y, par, disc, hdr, smp):
+    mode = disc[D_MODE]
+    s = disc[D_PIVOT]
+    sig = disc[D_SLIP_DIR]
+    if mode == MODE_SLIDE:
+        if k == 2:
+            ag, av = ground(t, hdr, smp)
+            dd = -ag - par[Q_MU_K] * sig * (par[P_G] + av)
+            return sig * y[3], sig * dd, True
+        if k == 3:
+            _ag, _dag, av, dav = ground_rates(t, hdr, smp)
+            return par[P_G] + av, dav, True
+        return np.inf, 0.0, False
+    if k == 0:
+        return s * y[0], s * y[1], True
+    if k == 1:
+        return par[P_THETA_OVER] - s * y[0], -s * y[1], True
+    if k == 5:
+        return par[P_ALPHA] - s * y[0], -s * y[1], False
+    if mode == MODE_ROCK:
+        tdd, F, N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
+        if k == 2:
+            # rate by a one-sided difference: F and N depend on a_g, theta''
+            g = par[Q_MU_S] * N - abs(F)
+            return g, 0.0, True
+        if k == 3:
+            return N, 0.0, True
+        return s * y[1], s * tdd, False
+    tdd, dd, N = slip_rock(t, y[0], y[1], s, sig, par, hdr, smp)
+    if k == 2:
+        return sig * y[3], sig * dd, True
+    if k == 3:
+        return N, 0.0, True
+    return s * y[1], s * tdd, False
+
+
+@jit
+def static_margin(t, y, par, disc, hdr, smp):
+    """REST holds while |a_g| <= mu_s G and |a_g| <= G b/h (physics.md 4.3)."""
+    ag, av = ground(t, hdr, smp)
+    G = par[P_G] + av
+    lim = min(par[Q_MU_S], par[Q_B] / par[Q_H]) * G
+    return min(lim - abs(ag), G)
+
+
+@jit
+def book_time(t, disc, met):
+    dt = t - met[M_T_PREV]
+    if dt > 0.0:
+        m = disc[D_MODE]
+        if m == MODE_SLIDE:
+            met[M_T_SLIDE] += dt
+        elif m == MODE_SLIDE_ROCK:
+            met[M_T_SLIDE_ROCK] += dt
+        elif m == MODE_ROCK:
+            met[M_T_ROCK] += dt
+    met[M_T_PREV] = t
+
+
+@jit
+def track_slide(d, met):
+    if abs(d) > met[M_MAX_SLIDE]:
+        met[M_MAX_SLIDE] = abs(d)
+    met[M_RESIDUAL_SLIDE] = d
+
+
+@jit
+def set_mode(disc, mode, s, sigma):
+    disc[D_MODE] = mode
+    disc[D_STATIC] = 1 if mode == MODE_REST else 0
+    disc[D_PIVOT] = s
+    disc[D_SLIP_DIR] = sigma
+
+
+@jit
+def start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt):
+    """theta = theta' = 0 (rest or just after an impact): choose REST, SLIDE,
+    ROCK or SLIDE_ROCK by the initiation criteria of physics.md 4.3."""
+    ag, av = ground(t, hdr, smp)
+    G = par[P_G] + av
+    if G <= 0.0:
+        log_event(log, cnt, t, EV_FLIGHT, 0.0, 0.0, 0.0, 0)
+        return FLIGHT
+    y[0] = 0.0
+    y[1] = 0.0
+    b_h = par[Q_B] / par[Q_H]
+    mu_s = par[Q_MU_S]
+    mu_k = par[Q_MU_K]
+    moving = y[3] != 0.0
+    if moving:
+        sigma = 1 if y[3] > 0.0 else -1
+        if mu_k > b_h:
+            set_mode(disc, MODE_SLIDE_ROCK, sigma, sigma)
+        else:
+            set_mode(disc, MODE_SLIDE, 1, sigma)
+        return RUNNING
+    rock_demand = abs(ag) > G * b_h
+    if rock_demand:
+        s = -1 if ag > 0.0 else 1
+        _tdd, F, N = stick_rock(t, 0.0, 0.0, s, par, hdr, smp)
+        if abs(F) <= mu_s * N:
+            set_mode(disc, MODE_ROCK, s, 0)
+            if np.isnan(met[M_T_UPLIFT]):
+                met[M_T_UPLIFT] = t
+            log_event(log, cnt, t, EV_UPLIFT, 0.0, 0.0, 0.0, s)
+            return RUNNING
+        sigma = -1 if F > 0.0 else 1
+        tdd, _dd, _N = slip_rock(t, 0.0, 0.0, sigma, sigma, par, hdr, smp)
+        if mu_k > b_h and sigma * tdd > 0.0:
+            set_mode(disc, MODE_SLIDE_ROCK, sigma, sigma)
+            if np.isnan(met[M_T_UPLIFT]):
+                met[M_T_UPLIFT] = t
+            met[M_N_STICK_SLIP] += 1
+            log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sigma)
+            return RUNNING
+        set_mode(disc, MODE_SLIDE, 1, sigma)
+        met[M_N_STICK_SLIP] += 1
+        log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sigma)
+        return RUNNING
+    if abs(ag) > mu_s * G:
+        sigma = -1 if ag > 0.0 else 1
+        set_mode(disc, MODE_SLIDE, 1, sigma)
+        met[M_N_STICK_SLIP] += 1
+        log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sigma)
+        return RUNNING
+    set_mode(disc, MODE_REST, 1, 0)
+    return RUNNING
+
+
+@jit
+def impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    """Ground impact at theta = 0 (physics.md 1 and 4.3)."""
+    s = disc[D_PIVOT]
+    pre = y[1]
+    e = par[P_E]
+    b = par[Q_B]
+    h = par[Q_H]
+    iG = par[Q_IG]
+    i0 = iG + b * b + h * h
+    met[M_IMPACTS] += 1
+    chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
+    met[M_T_LAST_IMPACT] = t
+    y[0] = 0.0
+    if disc[D_MODE] == MODE_ROCK:
+        post = e * pre
+        y[1] = post
+        log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)
+        if abs(post) < opt[O_EPS_OMEGA] or chatter:
+            y[1] = 0.0
+            st = start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+            if disc[D_MODE] == MODE_REST:
+                log_event(log, cnt, t, EV_REST, post, 0.0, 0.0, 0)
+            return st
+        disc[D_PIVOT] = -s
+        return RUNNING
+    # slide-rocking: plastic impact with stick at the new corner, then the
+    # impulse-ratio check for a slipping impact
+    vs = y[3]
+    post = e * pre + (h / i0) * vs
+    lam_x = h * post - (vs + h * pre)
+    lam_y = -s * b * (post + pre)
+    dpost = 0.0
+    if abs(lam_x) > par[Q_MU_S] * lam_y:
+        sigma = -1.0 if lam_x > 0.0 else 1.0
+        k = par[Q_MU_K] * sigma * h + s * b
+        post = pre * (iG - k * s * b) / (iG + k * s * b)
+        lam_y = -s * b * (post + pre)
+        dpost = vs + h * pre - h * post - par[Q_MU_K] * sigma * lam_y
+    y[1] = post
+    y[3] = dpost
+    log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)
+    if abs(post) < opt[O_EPS_OMEGA] or chatter:
+        y[1] = 0.0
+        return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+    if dpost != 0.0:
+        sig = 1 if dpost > 0.0 else -1
+        set_mode(disc, MODE_SLIDE_ROCK, -s, sig)
+    else:
+        set_mode(disc, MODE_ROCK, -s, 0)
+    return RUNNING
+
+
+@jit
+def stick(t, y, par, disc, hdr, smp, met, log, cnt):
+    """Slip velocity reached zero: stick if admissible, else reverse."""
+    y[3] = 0.0
+    mode = disc[D_MODE]
+    met[M_N_STICK_SLIP] += 1
+    if mode == MODE_SLIDE:
+        log_event(log, cnt, t, EV_STICK, 0.0, 0.0, 0.0, 0)
+        return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+    s = disc[D_PIVOT]
+    _tdd, F, N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
+    log_event(log, cnt, t, EV_STICK, y[1], y[1], y[0], s)
+    if abs(F) <= par[Q_MU_S] * N:
+        set_mode(disc, MODE_ROCK, s, 0)
+    else:
+        set_mode(disc, MODE_SLIDE_ROCK, s, -1 if F > 0.0 else 1)
+    return RUNNING
+
+
+@jit
+def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    if k < 0:
+        return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+    mode = disc[D_MODE]
+    s = disc[D_PIVOT]
+    if k == 4:
+        track_rotation(y[0], met)
+        return RUNNING
+    if k == 5:
+        if np.isnan(met[M_T_PASS_ALPHA]):
+            met[M_T_PASS_ALPHA] = t
+            log_event(log, cnt, t, EV_PASS_ALPHA, y[1], y[1], y[0], s)
+        return RUNNING
+    book_time(t, disc, met)
+    track_slide(y[2], met)
+    if k == 3:
+        log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], y[0], s)
+        return FLIGHT
+    if k == 2:
+        if mode == MODE_ROCK:
+            _tdd, F, _N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
+            sig = -1 if F > 0.0 else 1
+            set_mode(disc, MODE_SLIDE_ROCK, s, sig)
+            met[M_N_STICK_SLIP] += 1
+            log_event(log, cnt, t, EV_SLIP, y[1], y[1], y[0], sig)
+            return RUNNING
+        return stick(t, y, par, disc, hdr, smp, met, log, cnt)
+    if k == 1:
+        met[M_T_OVER] = t
+        track_rotation(y[0], met)
+        log_event(log, cnt, t, EV_OVERTURN, y[1], y[1], y[0], s)
+        if met[M_IMPACTS] > 0:
+            return OVERTURN_MODE1
+        return OVERTURN_MODE2
+    return impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
+
+
+@jit
+def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
+    book_time(t, disc, met)
+    track_slide(y[2], met)
+    if disc[D_MODE] != MODE_SLIDE:
+        track_rotation(y[0], met)
+    if at_end:
+        if disc[D_MODE] == MODE_REST:
+            if np.isnan(met[M_T_UPLIFT]):
+                return SAFE_NO_UPLIFT
+            return SAFE_REST
+        return SAFE_MOVING
+    return RUNNING
+
+
+@jit
+def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
+    for i in range(N_MET):
+        met[i] = 0.0
+    met[M_T_UPLIFT] = np.nan
+    met[M_T_OVER] = np.nan
+    met[M_T_PASS_ALPHA] = np.nan
+    met[M_T_LAST_IMPACT] = -np.inf
+    met[M_T_PREV] = t0
+    for i in range(N_DISC):
+        disc[i] = 0
+    if y[0] != 0.0 or y[1] != 0.0:
+        s = 1 if (y[0] > 0.0 or (y[0] == 0.0 and y[1] > 0.0)) else -1
+        if y[3] != 0.0:
+            set_mode(disc, MODE_SLIDE_ROCK, s, 1 if y[3] > 0.0 else -1)
+        else:
+            set_mode(disc, MODE_ROCK, s, 0)
+        met[M_T_UPLIFT] = t0
+        track_rotation(y[0], met)
+    elif y[3] != 0.0:
+        set_mode(disc, MODE_SLIDE, 1, 1 if y[3] > 0.0 else -1)
+    else:
+        set_mode(disc, MODE_REST, 1, 0)
+    track_slide(y[2], met)
+
+
+@jit
+def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
+        cnt):
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
+    return integrate_hybrid(rhs, event, transition, static_margin,
+                            after_step, N_EVENTS, y, par, disc, hdr, smp,
+                            opt, t_eval, met, hist_t, hist_y, hist_d, log,
+                            cnt)
+
+
+@jit
+def rigid_friction_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t,
+                            hist_y, hist_d, log, cnt):
+    """One run of the rigid block with friction (time history, events)."""
+    return run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+               log, cnt)
+
+
+@jit_parallel
+def rigid_friction_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Independent runs in parallel (rows of Y0/PAR/HDR/OPT)."""
+    n = Y0.shape[0]
+    for i in prange(n):
+        y = Y0[i].copy()
+        met = np.empty(N_MET)
+        t_eval = np.empty(0)
+        hist_t = np.empty(0)
+        hist_y = np.empty((0, 4))
+        hist_d = np.empty((0, 3), dtype=np.int64)
+        log = np.empty((0, N_LOG))
+        cnt = np.zeros(N_COUNTERS, dtype=np.int64)
+        status[i] = run(y, PAR[i], HDR[i], smp, OPT[i], t_eval, met, hist_t,
+                        hist_y, hist_d, log, cnt)
+        for j in range(N_MET):
+            MET[i, j] = met[j]
+        for j in range(y.shape[0]):
+            YF[i, j] = y[j]
