@@ -12,9 +12,11 @@ from .spectrum import overturning_spectrum
 from .friction import Friction
 from .records import GroundMotion, read_record
 from .foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation, simulate_foundation
+from .wall import Wall
 
 __all__ = [
     "RigidBlock", "FlexibleBody", "housner_restitution", "Pulse", "SampledMotion", "Solver",
     "SimulationResult", "simulate", "overturning_spectrum", "Friction", "GroundMotion", "read_record",
+    "Wall",
 ]
 __version__ = "0.1.0"

@@ -1,0 +1,362 @@
+"""Rigid block rocking against a rear wall: one-sided rocking (physics.md 2).
+
+Hogan (1992); Mennitti, Maiorano & Aversa (2021).  The block of
+:mod:`.rigid` (state ``y = (theta, theta')`` [rad, rad/s], the same
+equations of motion, Housner ground impacts) with a rigid wall on side
+``w = par[P_WALL_SIDE]`` (+1 / -1): ``w*theta > 0`` tilts toward the wall.
+While pivoting on the corner near the wall (``s == w``) the block touches
+the wall at ``w*theta = theta_w = par[P_THETA_W]`` [rad] (the front end
+computes it from the gap and the wall height; ``inf`` means the wall is
+never reached).  Tilting away from the wall (``s == -w``) is plain Housner
+rocking.  Parameters are those of :mod:`.rigid` plus P_WALL_SIDE,
+P_THETA_W, P_E_W (wall restitution e_w) and P_HOGAN.
+
+Events while rocking (0-4 are :func:`.rigid.event`):
+
+0 ground impact  g = s*theta                    terminal
+1 overturn       g = theta_over - s*theta       terminal
+2 peak           g = s*theta'                   observer
+3 pass alpha     g = alpha - s*theta            observer
+4 flight         g = G                          terminal
+5 wall contact   g = theta_w - w*theta (s == w) terminal
+
+Maps and states
+---------------
+* Wall impact: pivot kept, ``theta'+ = -e_w theta'-``; counted in
+  ``met[M_WALL_IMPACTS]``.  Wall impacts with e_w <= 1 never add energy.
+* Chatter against the wall (``|theta'+| < eps_omega`` or two impacts closer
+  than ``eps_t``, physics.md 7) settles the block on the wall:
+  ``theta = w theta_w``, ``theta' = 0``, mode MODE_WALL_REST, a static phase
+  whose margin is ``w theta''`` at rest on the wall (the moments press the
+  block on the wall while it is >= 0).  It is released (pivot w,
+  ``theta' = 0``) when the margin becomes negative.  At and after the end of the
+  excitation the margin uses the excitation's right limit (zero), so a
+  pulse ending with a jump (rectangular, one-cosine, a record) releases the
+  block exactly at its end.
+* Gap d = 0 (``par[P_HOGAN] = 1``, ``theta_w = 0``): Hogan's one-sided
+  rocking.  The block only pivots on the far corner; at theta = 0 ground
+  and wall impacts coincide and ``theta'+ = -r theta'-`` with the pivot
+  kept, where r = e_w (the wall restitution is Hogan's r).  Each such
+  impact counts as a ground and as a wall impact.  From rest the block
+  uplifts only away from the wall (``w a_g > G tan(alpha)``).
+
+Outcomes
+--------
+LEANING: at rest on the wall at the end of the run with theta_w > alpha,
+or (exact, also used as an early decision) after the excitation, pivoting
+on the near corner past alpha with free-rocking energy below the barrier
+``1 - cos(alpha)``: the block can then never come back over alpha (wall
+impacts do not add energy); with e_w < 1 it settles on the wall, with
+e_w = 1 it bounces in the wall's well forever.  Leaning is never decided
+early while the ground still shakes (a run whose t_end comes before the end
+of the excitation reports the state at t_end).  Early safe decision: the
+rule of :func:`.rigid.bounded_after_excitation` (inside the well,
+``s*theta < alpha``, energy below the barrier), with the toward-wall peak
+capped at theta_w and the energy lost at that wall impact folded exactly
+into the next peak away from the wall (:func:`fold_peaks`).
+"""
+import math
+
+import numpy as np
+from numba import prange
+
+from .config import jit, jit_generic, jit_parallel
+from .excitation import excitation_end, ground
+from .hybrid import N_COUNTERS, integrate_hybrid, log_event
+from .layout import (D_MODE, D_PIVOT, D_STATIC, D_WALL_REST, EV_FLIGHT,
+                     EV_REST, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
+                     FLIGHT, LEANING, M_IMPACTS, M_T_LAST_IMPACT, M_T_UPLIFT,
+                     M_WALL_IMPACTS, MODE_REST, MODE_ROCK, MODE_WALL_REST,
+                     N_DISC, N_LOG, N_MET, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T,
+                     O_T0, RUNNING, SAFE_BOUNDED, SAFE_MOVING, SAFE_NO_UPLIFT,
+                     SAFE_REST)
+from .rigid import (K_FLIGHT, K_IMPACT, K_OVERTURN, P_ALPHA, P_E, P_E_W, P_G,
+                    P_HOGAN, P_THETA_OVER, P_THETA_W, P_WALL_SIDE,
+                    free_energy, ground_impact, init_state as rigid_init_state,
+                    observe, overturned, peak_from_energy, rhs,
+                    start_rocking_or_rest, theta_ddot, track_rotation)
+from .rigid import event as rigid_event
+from .rigid import static_margin as rest_margin
+
+N_EVENTS = 6
+K_WALL = 5
+
+
+@jit_generic
+def event(k, t, y, par, disc, hdr, smp):
+    # Inlined at the Numba-IR level: a separately compiled wrapper around
+    # rigid.event adds a call layer to the hottest function of the driver
+    # (every event at every step) and cost ~25% with an inert wall.
+    if k == K_WALL:
+        w = par[P_WALL_SIDE]
+        if disc[D_PIVOT] == w:
+            return par[P_THETA_W] - w * y[0], -w * y[1], True
+        return np.inf, 0.0, True
+    return rigid_event(k, t, y, par, disc, hdr, smp)
+
+
+@jit
+def wall_rest_margin(t, par, hdr, smp):
+    """w * theta'' at rest on the wall (>= 0: pressed on it; the resting
+    phase ends when it becomes negative), physics.md 2.
+
+    From the end of the excitation on, the right limit (no excitation) is
+    used.  Negative as well when G <= 0, so that the flight event can fire
+    after the release."""
+    te = np.inf if t >= excitation_end(hdr) else t
+    w = par[P_WALL_SIDE]
+    _ag, av = ground(te, hdr, smp)
+    m = w * theta_ddot(te, w * par[P_THETA_W], w, par, hdr, smp)
+    return min(m, par[P_G] + av)
+
+
+@jit
+def hogan_rest_margin(t, par, hdr, smp):
+    """d = 0: full contact holds while w a_g <= G tan(alpha) (uplift away
+    from the wall only); the wall blocks any uplift toward it."""
+    ag, av = ground(t, hdr, smp)
+    G = par[P_G] + av
+    return min(G * math.tan(par[P_ALPHA]) - par[P_WALL_SIDE] * ag, G)
+
+
+@jit
+def static_margin(t, y, par, disc, hdr, smp):
+    if disc[D_MODE] == MODE_WALL_REST:
+        return wall_rest_margin(t, par, hdr, smp)
+    if par[P_HOGAN] != 0.0:
+        return hogan_rest_margin(t, par, hdr, smp)
+    return rest_margin(t, y, par, disc, hdr, smp)
+
+
+@jit
+def start_from_rest(t, y, par, disc, hdr, smp, met, log, cnt):
+    """Uplift test from theta = theta' = 0 (d = 0: away from the wall only)."""
+    if par[P_HOGAN] != 0.0:
+        ag, av = ground(t, hdr, smp)
+        G = par[P_G] + av
+        if G > 0.0 and par[P_WALL_SIDE] * ag <= G * math.tan(par[P_ALPHA]):
+            disc[D_MODE] = MODE_REST
+            disc[D_STATIC] = 1
+            return RUNNING
+    return start_rocking_or_rest(t, y, par, disc, hdr, smp, met, log, cnt)
+
+
+@jit
+def settle_on_wall(t, y, par, disc, hdr, smp, log, cnt):
+    """End of a chatter sequence at the wall: rest on it if pressed."""
+    w = par[P_WALL_SIDE]
+    y[0] = w * par[P_THETA_W]
+    y[1] = 0.0
+    if wall_rest_margin(t, par, hdr, smp) >= 0.0:
+        disc[D_MODE] = MODE_WALL_REST
+        disc[D_STATIC] = 1
+        disc[D_WALL_REST] = 1
+        log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], disc[D_PIVOT])
+    # otherwise the moments already pull it off the wall: keep rocking
+
+
+@jit
+def release_from_wall(t, y, par, disc, log, cnt):
+    w = par[P_WALL_SIDE]
+    disc[D_MODE] = MODE_ROCK
+    disc[D_STATIC] = 0
+    disc[D_WALL_REST] = 0
+    disc[D_PIVOT] = 1 if w > 0.0 else -1
+    y[0] = w * par[P_THETA_W]
+    y[1] = 0.0
+    log_event(log, cnt, t, EV_WALL_RELEASE, 0.0, 0.0, y[0], disc[D_PIVOT])
+
+
+@jit
+def is_chatter(t, post, opt, met):
+    """Chatter rule of physics.md 7 (any two impacts closer than eps_t)."""
+    c = abs(post) < opt[O_EPS_OMEGA] or t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
+    met[M_T_LAST_IMPACT] = t
+    return c
+
+
+@jit
+def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    """Wall impact: pivot kept, theta'+ = -e_w theta'- (physics.md 2)."""
+    w = par[P_WALL_SIDE]
+    pre = y[1]
+    post = -par[P_E_W] * pre
+    y[0] = w * par[P_THETA_W]
+    y[1] = post
+    met[M_WALL_IMPACTS] += 1
+    track_rotation(y[0], met)
+    log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, y[0], disc[D_PIVOT])
+    if is_chatter(t, post, opt, met):
+        settle_on_wall(t, y, par, disc, hdr, smp, log, cnt)
+    return RUNNING
+
+
+@jit
+def hogan_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    """d = 0: ground and wall impacts coincide at theta = 0; pivot kept on
+    the far corner, theta'+ = -r theta'- with r = e_w (Hogan 1992)."""
+    pre = y[1]
+    post = -par[P_E_W] * pre
+    y[0] = 0.0
+    y[1] = post
+    met[M_IMPACTS] += 1
+    met[M_WALL_IMPACTS] += 1
+    log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, 0.0, disc[D_PIVOT])
+    if is_chatter(t, post, opt, met):
+        y[1] = 0.0
+        st = start_from_rest(t, y, par, disc, hdr, smp, met, log, cnt)
+        if disc[D_MODE] == MODE_REST:
+            log_event(log, cnt, t, EV_REST, post, 0.0, 0.0, disc[D_PIVOT])
+        return st
+    return RUNNING
+
+
+@jit
+def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    if k < 0:
+        if disc[D_MODE] == MODE_WALL_REST:
+            release_from_wall(t, y, par, disc, log, cnt)
+            return RUNNING
+        return start_from_rest(t, y, par, disc, hdr, smp, met, log, cnt)
+    if k == K_IMPACT:
+        if par[P_HOGAN] != 0.0:
+            return hogan_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
+        return ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
+                             par[P_E])
+    if k == K_WALL:
+        return wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
+    if k == K_OVERTURN:
+        return overturned(t, y, disc, met, log, cnt)
+    if k == K_FLIGHT:
+        log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], y[0], disc[D_PIVOT])
+        return FLIGHT
+    observe(k, t, y, disc, met, log, cnt)
+    return RUNNING
+
+
+@jit
+def trapped_on_wall(y, par, disc):
+    """Free motion (no excitation) can never bring the block back: it
+    pivots on the near corner past alpha (so theta_w > alpha) with energy
+    below the barrier, and wall impacts never add energy."""
+    w = par[P_WALL_SIDE]
+    if disc[D_PIVOT] != w or not par[P_THETA_W] < par[P_THETA_OVER]:
+        return False
+    a = par[P_ALPHA]
+    return w * y[0] > a and free_energy(y, disc[D_PIVOT], par) < \
+        1.0 - math.cos(a)
+
+
+@jit
+def fold_peaks(y, par, disc, met):
+    """Closed-form next peak on each side of free rocking with energy below
+    the barrier (exact: energy is conserved between impacts, a ground
+    impact multiplies it by e^2, a wall impact multiplies the kinetic part
+    at theta_w by e_w^2); later peaks are lower."""
+    a = par[P_ALPHA]
+    w = par[P_WALL_SIDE]
+    tw = par[P_THETA_W]
+    hogan = par[P_HOGAN] != 0.0
+    ew2 = par[P_E_W] * par[P_E_W]
+    e2 = ew2 if hogan else par[P_E] * par[P_E]
+    s = disc[D_PIVOT]
+    E = free_energy(y, s, par)
+    if s * y[1] > 0.0:
+        side = s
+    else:
+        side = s if hogan else -s
+        E *= e2
+    for _ in range(2):
+        pk = peak_from_energy(a, E)
+        if side == w and pk >= tw:
+            pk = tw
+            pe = math.cos(a - tw) - math.cos(a)
+            E = pe + ew2 * (E - pe)
+        track_rotation(side * pk, met)
+        E *= e2
+        if not hogan:
+            side = -side
+
+
+@jit
+def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
+    track_rotation(y[0], met)
+    mode = disc[D_MODE]
+    if at_end:
+        if mode == MODE_WALL_REST:
+            if par[P_THETA_W] > par[P_ALPHA]:
+                return LEANING
+            return SAFE_REST
+        if mode == MODE_REST:
+            if np.isnan(met[M_T_UPLIFT]):
+                return SAFE_NO_UPLIFT
+            return SAFE_REST
+        if t >= excitation_end(hdr) and trapped_on_wall(y, par, disc):
+            track_rotation(par[P_WALL_SIDE] * par[P_THETA_W], met)
+            return LEANING
+        return SAFE_MOVING
+    if opt[O_EARLY_EXIT] != 0.0 and mode == MODE_ROCK and \
+            t >= excitation_end(hdr):
+        s = disc[D_PIVOT]
+        a = par[P_ALPHA]
+        if free_energy(y, s, par) < 1.0 - math.cos(a):
+            if s * y[0] < a:
+                fold_peaks(y, par, disc, met)
+                return SAFE_BOUNDED
+            if trapped_on_wall(y, par, disc):
+                track_rotation(par[P_WALL_SIDE] * par[P_THETA_W], met)
+                return LEANING
+    return RUNNING
+
+
+@jit
+def init_state(t0, y, par, disc, hdr, smp, met):
+    """As :func:`.rigid.init_state`; with d = 0 the pivot is the far corner
+    (a start at theta = 0 moving toward the wall impacts at once)."""
+    rigid_init_state(t0, y, par, disc, hdr, smp, met)
+    w = par[P_WALL_SIDE]
+    if par[P_HOGAN] != 0.0 and disc[D_MODE] == MODE_ROCK and \
+            disc[D_PIVOT] == w:
+        disc[D_PIVOT] = -1 if w > 0.0 else 1
+
+
+@jit
+def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
+        cnt):
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    init_state(opt[O_T0], y, par, disc, hdr, smp, met)
+    return integrate_hybrid(rhs, event, transition, static_margin,
+                            after_step, N_EVENTS, y, par, disc, hdr, smp,
+                            opt, t_eval, met, hist_t, hist_y, hist_d, log,
+                            cnt)
+
+
+# ---------------------------------------------------------------- entries
+@jit
+def rigid_wall_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                        hist_d, log, cnt):
+    """One run against a wall, with time history and event log (see
+    :func:`.rigid.rigid_simulate` for the arguments)."""
+    return run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+               log, cnt)
+
+
+@jit_parallel
+def rigid_wall_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Many independent runs in parallel (see :func:`.rigid.rigid_sweep`)."""
+    n = Y0.shape[0]
+    for i in prange(n):
+        y = Y0[i].copy()
+        met = np.empty(N_MET)
+        t_eval = np.empty(0)
+        hist_t = np.empty(0)
+        hist_y = np.empty((0, 2))
+        hist_d = np.empty((0, 3), dtype=np.int64)
+        log = np.empty((0, N_LOG))
+        cnt = np.zeros(N_COUNTERS, dtype=np.int64)
+        status[i] = run(y, PAR[i], HDR[i], smp, OPT[i], t_eval, met, hist_t,
+                        hist_y, hist_d, log, cnt)
+        for j in range(N_MET):
+            MET[i, j] = met[j]
+        for j in range(y.shape[0]):
+            YF[i, j] = y[j]
