@@ -169,7 +169,8 @@ def _extra_commands():
     """Subcommands defined next to their features."""
     out = []
     for mod, fn in (("freerocking", "add_fit_subcommand"), ("rocking_spectrum", "add_subcommands"),
-                    ("accuracy", "add_subcommand"), ("scene", "add_subcommand")):
+                    ("accuracy", "add_subcommand"), ("scene", "add_subcommand"),
+                    ("study", "add_subcommand")):
         try:
             m = __import__(f"fastrock.{mod}", fromlist=[fn])
         except ImportError:
