@@ -27,6 +27,7 @@ impacts             ground impacts (up to the decision when early_exit)
 ground_impacts      same as impacts
 wall_impacts        wall impacts (0 without a wall)
 max_rotation_toward_wall, max_rotation_away_from_wall  [rad] (with a wall)
+toward_wall         True if the pulse first throws the block toward the wall
 time_uplift         first uplift                             [s]
 time_overturn       overturning time (NaN if safe)           [s]
 time_end            time at which the run stopped            [s]
@@ -139,6 +140,8 @@ def _add_results(df, status, MET, body, wall=None, friction=None):
     df["ground_impacts"] = df["impacts"]
     df["wall_impacts"] = np.nan_to_num(MET[:, L.M_WALL_IMPACTS]).astype(int)
     if wall is not None:
+        # a positive ground acceleration tips the block toward -theta
+        df["toward_wall"] = df["sign"] == -wall.side
         toward = L.M_MAX_THETA_POS if wall.side > 0 else L.M_MAX_THETA_NEG
         away = L.M_MAX_THETA_NEG if wall.side > 0 else L.M_MAX_THETA_POS
         df["max_rotation_toward_wall"] = MET[:, toward]

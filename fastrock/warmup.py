@@ -11,7 +11,7 @@ def _rigid(wall=None):
     from .excitation import Pulse
     from .simulate import simulate
     from .spectrum import overturning_spectrum
-    b = RigidBlock(alpha=0.2, p=2.0)
+    b = RigidBlock.rectangle(b=0.2, h=1.0)
     simulate(b, Pulse(3.0, 2.0, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p"), wall=wall,
              duration=1.0)
     overturning_spectrum(b, [3.0], [2.0], wall=wall, progress=False)

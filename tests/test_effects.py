@@ -1,0 +1,78 @@
+"""Simulate only the effects a scene calls for: what runs is the smallest
+kernel, and nothing else is imported or compiled (checked in fresh
+subprocesses; a kernel loaded from the on-disk cache counts as compiled)."""
+import json
+import os
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+PROBE = textwrap.dedent("""
+    import json, sys
+    import numba
+    import fastrock as fr
+    from fastrock.scene import Scene
+
+    def compiled():
+        out = {}
+        for name, mod in list(sys.modules.items()):
+            if not name.startswith("fastrock.kernels."):
+                continue
+            for attr, obj in vars(mod).items():
+                if isinstance(obj, numba.core.registry.CPUDispatcher) and obj.signatures \\
+                        and attr.endswith(("_simulate", "_sweep")):
+                    out[attr] = len(obj.signatures)
+        return out
+
+    report = {"after_import": compiled()}
+    case = sys.argv[1]
+    pulse = fr.Pulse(3.0, 2.0, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+    if case == "rigid":
+        sc = Scene(fr.RigidBlock(0.2, 2.0), pulse)
+    elif case == "friction-inf":
+        sc = Scene(fr.RigidBlock(0.2, 2.0), pulse, friction=fr.Friction(float("inf")))
+    elif case == "friction":
+        sc = Scene(fr.RigidBlock(0.2, 2.0), pulse, friction=fr.Friction(0.3))
+    elif case == "flexible":
+        sc = Scene(fr.FlexibleBody(0.2, 2.0, 9.0, 0.05), pulse)
+    r = sc.run(duration=3.0)
+    report.update(kernel=r.kernel, scene_kernel=sc.kernel, effects=list(sc.effects),
+                  compiled=compiled(),
+                  modules=sorted(m for m in sys.modules if m.startswith("fastrock.kernels.")))
+    print(json.dumps(report))
+""")
+
+EXPECTED = {
+    # case: (kernel, effects, the only compiled entry)
+    "rigid": ("rigid", [], "rigid_simulate"),
+    "friction-inf": ("rigid", [], "rigid_simulate"),
+    "friction": ("rigid_friction", ["friction"], "rigid_friction_simulate"),
+    "flexible": ("flexible", ["flexible"], "flexible_simulate"),
+}
+MODEL_MODULES = {"fastrock.kernels.rigid", "fastrock.kernels.flexible", "fastrock.kernels.friction",
+                 "fastrock.kernels.wall", "fastrock.kernels.foundation"}
+
+
+def probe(case, tmp_path):
+    out = subprocess.run([sys.executable, "-c", PROBE, case], capture_output=True, text=True,
+                         env=dict(os.environ), timeout=900)
+    assert out.returncode == 0, out.stderr[-3000:]
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+@pytest.mark.parametrize("case", sorted(EXPECTED))
+def test_scene_runs_and_compiles_only_its_kernel(case, tmp_path):
+    kernel, effects, entry = EXPECTED[case]
+    rep = probe(case, tmp_path)
+    assert rep["after_import"] == {}, "importing fastrock compiled kernels"
+    assert rep["kernel"] == kernel == rep["scene_kernel"]
+    assert rep["effects"] == effects
+    assert rep["compiled"] == {entry: 1}
+    # model modules other than the one needed are not even imported
+    # (the flexible and friction kernels reuse helpers of the rigid module)
+    needed = {"rigid": {"fastrock.kernels.rigid"},
+              "rigid_friction": {"fastrock.kernels.rigid", "fastrock.kernels.friction"},
+              "flexible": {"fastrock.kernels.rigid", "fastrock.kernels.flexible"}}[kernel]
+    assert set(rep["modules"]) & MODEL_MODULES == needed
