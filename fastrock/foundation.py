@@ -535,12 +535,15 @@ def _predictor_foundation(model, params, blk, mass):
         "'omega': ..., 'e_f': ...} to fit_free_rocking")
 
 
-def _release_history(body, foundation, mass, theta0, t_end, rtol):
+def _release_history(body, foundation, mass, theta0, t_end, rtol, max_steps):
     spec, blk = foundation_spec(body, foundation, mass)
     hdr, smp = X.to_header(body, None, None)
-    opt = make_solver(rtol=rtol).options(t_end, False)
+    opt = make_solver(rtol=rtol, max_steps=max_steps).options(t_end, False)
     y0 = foundation.initial_state(blk, theta0, 0.0)
     code, t, Y, D, _lg, _met, _cnt = _integrate(spec, y0, hdr, smp, opt, np.empty(0), 20000)
+    if code < 0:
+        # e.g. a fit wandering to an absurdly stiff foundation: make it an invalid point
+        raise ValueError(f"{foundation} release failed: {status_of(code)}")
     it = spec.state_names.index("theta")
     lift = D[:, L.D_MODE] != L.MODE_REST
     t, th, lift = _dedupe(t, Y[:, it], lift)
@@ -548,7 +551,7 @@ def _release_history(body, foundation, mass, theta0, t_end, rtol):
 
 
 def make_predictor(model, body=None, mass=1.0, *, inertia_ratio=0.75, g=G_PREDICTOR,
-                   rtol=1e-10, return_peaks=False, max_duration=600.0):
+                   rtol=1e-10, return_peaks=False, max_duration=600.0, max_steps=300_000):
     """A ``predictor(params, n)`` for :func:`fastrock.freerocking.fit_free_rocking`.
 
     It simulates the free release from rest at ``params["theta0"]`` and returns the durations
@@ -584,6 +587,12 @@ def make_predictor(model, body=None, mass=1.0, *, inertia_ratio=0.75, g=G_PREDIC
         ``M R^2/I_0`` without a body and without ``e`` (0.75: uniform rectangle).
     rtol : float
         Integrator tolerance (tight, so that finite-difference Jacobians are clean).
+    max_steps : int
+        Step budget of one release; a release that needs more (e.g. a fit wandering to an
+        absurdly stiff foundation) raises ValueError, which the fit treats as an invalid
+        point. Weakly identified parameters (a switching ``omega`` when the data has no
+        vibration tail) are better fixed: wrap the predictor,
+        ``lambda prm, n: pred({**prm, "omega": 40.0}, n)``, or bound them.
     """
     V.choice("model", model, PREDICTOR_MODELS)
     if body is not None:
@@ -599,9 +608,10 @@ def make_predictor(model, body=None, mass=1.0, *, inertia_ratio=0.75, g=G_PREDIC
         omega, _z = fnd.vibration(blk, M)
         q0 = rocking_quarter_period(min(abs(theta0), 0.999 * blk.alpha), blk.alpha, blk.p)
         half = max(2.0 * q0, 1.5 * math.pi / omega if np.isfinite(omega) else 0.0)
-        t_end = q0 + (n + 2) * half
+        # durations shrink: start at a quarter of the no-decay bound, double if short
+        t_end = q0 + 0.25 * (n + 2) * half
         while True:
-            code, t, th, lift = _release_history(blk, fnd, M, theta0, t_end, rtol)
+            code, t, th, lift = _release_history(blk, fnd, M, theta0, t_end, rtol, max_steps)
             hc = half_cycles(t, th, lift_off=lift, definition=definition)
             done = len(hc) >= n or code not in (L.SAFE_REST, L.SAFE_MOVING, L.SAFE_NO_UPLIFT)
             if done or t_end >= max_duration:

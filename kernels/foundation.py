@@ -104,7 +104,7 @@ def account_time(t, disc, met):
             met[M_T_CONTACT] += dt
         elif disc[D_MODE] == MODE_ROCK:
             met[M_T_ROCK] += dt
-    met[M_T_PREV] = t
+        met[M_T_PREV] = t
 
 
 @jit

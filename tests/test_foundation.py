@@ -405,6 +405,12 @@ def test_predictor_with_body_uses_si_springs():
                                rtol=1e-7)
 
 
+def test_predictor_step_budget_makes_an_invalid_point():
+    pred = make_predictor("two-spring", max_steps=50)
+    with pytest.raises(ValueError, match="step-budget"):
+        pred({"p": 3.0, "omega": 3e4, "zeta": 0.1, "theta0": 0.1, "alpha": 0.25}, 5)
+
+
 # ------------------------------------------------------------------------ bad input
 @pytest.mark.parametrize("make, match", [
     (lambda: TwoSpringFoundation(k_v=-1.0), "k_v"),
