@@ -1,0 +1,262 @@
+#!/usr/bin/env python
+"""Cost of friction (issue #6, "Effect selection"): mu = inf pays nothing, inert friction pays
+for the 4-state kernel, and a real friction spectrum.
+
+Usage::
+
+    pytest bench/bench_friction.py             # pytest-benchmark table + the 5% check
+    python bench/bench_friction.py             # plain report of the ratios
+    python bench/bench_friction.py --quick     # fewer repeats, 30x30 instead of 50x50
+
+Measured on a rectangular block b = 0.25 m, h = 1 m (b/h = 0.25, alpha = 0.245, p = 2.67 rad/s),
+one-sine pulses a_p/(g tan alpha) in [1, 6] x omega_p/p in [0.5, 10], t_after 10 s, rtol 1e-8:
+
+1. ``Friction(inf)`` against no friction: the scene selects the plain rigid kernel (checked:
+   ``Scene.kernel == "rigid"``, no ``fastrock.kernels.friction`` import), so the two must time
+   the same.  Measured anyway, as CPU time on one thread (robust on a shared machine), for a
+   single run of the packaged El Centro record through ``Scene.run`` and for a 40 x 40 spectrum
+   through ``overturning_spectrum``.  Target: within 5%.
+2. Inert but finite friction, mu = 10 (nothing slides: checked per cell, stick_slip == 0 and
+   max_slide == 0): ``rigid_friction_sweep`` against ``rigid_sweep`` on the same cells, one
+   thread, early exit off in both (the friction kernel has no early decision, so with it on the
+   rigid kernel would stop earlier and the ratio would mix in that difference; that front-end
+   ratio is printed too).  This is the price of the 4-state kernel (4 states in DP5, 6 event
+   functions including mu_s N - |F| and N, the mode logic).
+3. A 50 x 50 friction spectrum (mu_s = 0.4 > b/h: rocking and slide-rocking; and mu_s = 0.2 <
+   b/h: sliding), wall time on all threads, with the rigid 50 x 50 for reference.
+
+Timings are minima over interleaved repeats; the load average is printed.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+import fastrock as fr
+from fastrock import Friction, models
+from fastrock.kernels import layout as L
+from fastrock.records import load_default_record
+from fastrock.scene import Scene
+from fastrock.solver import Solver
+
+BLOCK = fr.RigidBlock.rectangle(b=0.25, h=1.0)
+T_AFTER = 10.0
+INF = Friction(math.inf)
+INERT = Friction(10.0)
+REAL = {"mu0.4": Friction(0.4), "mu0.2": Friction(0.2)}
+
+
+def grid(n):
+    return np.linspace(1.0, 6.0, n), np.linspace(0.5, 10.0, n)
+
+
+def spectrum(friction, n, early_exit=True):
+    a, f = grid(n)
+    return fr.overturning_spectrum(BLOCK, a, f, friction=friction, progress=False, t_after=T_AFTER,
+                                   early_exit=early_exit)
+
+
+def record_scene(friction):
+    return Scene(BLOCK, excitation=load_default_record(), friction=friction, t_after=5.0)
+
+
+def best_of(fns, repeats, clock=time.perf_counter):
+    """Minimum time of each callable over interleaved repeats (one warm-up call each)."""
+    for f in fns:
+        f()
+    best = [math.inf] * len(fns)
+    for _ in range(repeats):
+        for i, f in enumerate(fns):
+            t0 = clock()
+            f()
+            best[i] = min(best[i], clock() - t0)
+    return best
+
+
+class one_thread:
+    def __enter__(self):
+        import numba
+        self.n = numba.get_num_threads()
+        numba.set_num_threads(1)
+
+    def __exit__(self, *exc):
+        import numba
+        numba.set_num_threads(self.n)
+
+
+# ------------------------------------------------------------------ 1. mu = inf vs none
+def inf_vs_none(repeats=5, n=40):
+    s0, si = record_scene(None), record_scene(INF)
+    assert s0.kernel == si.kernel == "rigid" and "friction" not in si.effects
+    r0, ri = s0.run(), si.run()
+    assert r0.metrics["nfev"] == ri.metrics["nfev"] and r0.outcome == ri.outcome
+    with one_thread():
+        t_run0, t_runi = best_of([s0.run, si.run], 10 * repeats, time.process_time)
+        t_sp0, t_spi = best_of([lambda: spectrum(None, n), lambda: spectrum(INF, n)], repeats,
+                               time.process_time)
+    return dict(scene_none=t_run0, scene_inf=t_runi, spectrum_none=t_sp0, spectrum_inf=t_spi, n=n)
+
+
+# ------------------------------------------------------------------ 2. inert friction
+def kernel_inputs(friction, cells):
+    """The arrays overturning_spectrum hands to the sweep kernel, for (A, F) cells."""
+    spec = models.select(BLOCK, friction=friction)
+    A = np.array([c[0] for c in cells])
+    F = np.array([c[1] for c in cells])
+    n = A.size
+    omega = F * BLOCK.p
+    dur = 2 * np.pi / omega
+    HDR = np.zeros((n, L.N_EXC))
+    HDR[:, L.X_KIND] = L.EXC_ONE_SINE
+    HDR[:, L.X_AMP] = A * BLOCK.g * math.tan(BLOCK.alpha)
+    HDR[:, L.X_OMEGA] = omega
+    HDR[:, L.X_SIGN] = 1.0
+    HDR[:, L.X_DUR] = dur
+    OPT = np.tile(Solver().options(0.0, False), (n, 1))
+    OPT[:, L.O_T_END] = dur + T_AFTER
+    PAR = np.tile(spec.par, (n, 1))
+    return spec, (np.zeros((n, spec.n_state)), PAR, HDR, np.zeros(1), OPT)
+
+
+def direct_sweep(spec, inputs):
+    Y0, PAR, HDR, smp, OPT = inputs
+    n = Y0.shape[0]
+    st = np.empty(n, np.int64)
+    met = np.empty((n, L.N_MET))
+    yf = np.empty_like(Y0)
+    spec.sweep(Y0, PAR, HDR, smp, OPT, st, met, yf)
+    return st, met
+
+
+def inert_cells(n=30):
+    """Cells of an n x n grid on which mu = 10 never slips (near pi/2 an overturning block can:
+    N -> 0; those cells are dropped), and the number dropped."""
+    a, f = grid(n)
+    cells = [(x, y) for y in f for x in a]
+    spec, inp = kernel_inputs(INERT, cells)
+    _st, met = direct_sweep(spec, inp)
+    keep = (met[:, L.M_N_STICK_SLIP] == 0) & (met[:, L.M_MAX_SLIDE] == 0)
+    return [c for c, k in zip(cells, keep) if k], int((~keep).sum())
+
+
+def inert_cost(repeats=3, n=30):
+    cells, dropped = inert_cells(n)
+    s0, i0 = kernel_inputs(None, cells)
+    s1, i1 = kernel_inputs(INERT, cells)
+    st0, met0 = direct_sweep(s0, i0)
+    st1, met1 = direct_sweep(s1, i1)
+    same = bool((st0 == st1).all())
+    up = met0[:, L.M_MAX_ABS_THETA] > 0          # cells that uplift (the rest: both exactly 0)
+    peak = np.abs(met1[up, L.M_MAX_ABS_THETA] / met0[up, L.M_MAX_ABS_THETA] - 1)
+    same = same and bool((met1[~up, L.M_MAX_ABS_THETA] == 0).all())
+    with one_thread():
+        t0, t1 = best_of([lambda: direct_sweep(s0, i0), lambda: direct_sweep(s1, i1)], repeats,
+                         time.process_time)
+    nfev = (met0[:, L.M_NFEV].sum(), met1[:, L.M_NFEV].sum())
+    return dict(rigid=t0, inert=t1, same_status=same, max_peak_rel=float(peak.max()) if peak.size else 0.0,
+                cells=len(cells), dropped=dropped, nfev_rigid=nfev[0], nfev_inert=nfev[1])
+
+
+def inert_front_end(repeats=3, n=30):
+    """overturning_spectrum(friction=Friction(10)) vs no friction, default early exit, all threads."""
+    t0, t1 = best_of([lambda: spectrum(None, n), lambda: spectrum(INERT, n)], repeats)
+    return t0, t1
+
+
+# ------------------------------------------------------------------ 3. friction spectra
+def spectra_50(n=50, repeats=1):
+    names = ["none"] + list(REAL)
+    fr_of = {"none": None, **REAL}
+    times = best_of([lambda k=k: spectrum(fr_of[k], n) for k in names], repeats)
+    dfs = {k: spectrum(fr_of[k], n) for k in names}
+    return {k: (t, dfs[k]) for k, t in zip(names, times)}
+
+
+def report(quick=False):
+    rep = 2 if quick else 5
+    n50 = 30 if quick else 50
+    print(f"fastrock {fr.__version__}, {os.cpu_count()} CPUs, load average {os.getloadavg()}")
+    print(f"block b=0.25 h=1.0 (alpha={BLOCK.alpha:.4f}, p={BLOCK.p:.4f}), one-sine, t_after {T_AFTER} s\n")
+    r = inf_vs_none(rep, 30 if quick else 40)
+    print(f"1. Friction(inf) vs none (kernel 'rigid' both; 1 thread, CPU time):")
+    print(f"   El Centro scene run   none {1e3 * r['scene_none']:.2f} ms  inf {1e3 * r['scene_inf']:.2f} ms"
+          f"  ratio {r['scene_inf'] / r['scene_none']:.3f} (target <= 1.05)")
+    print(f"   {r['n']}x{r['n']} spectrum      none {r['spectrum_none']:.3f} s   inf {r['spectrum_inf']:.3f} s"
+          f"   ratio {r['spectrum_inf'] / r['spectrum_none']:.3f} (target <= 1.05)")
+    c = inert_cost(max(2, rep - 2), 20 if quick else 30)
+    print(f"2. inert friction mu=10 vs rigid kernel (1 thread, CPU time, no early exit, {c['cells']} cells, "
+          f"{c['dropped']} dropped because mu=10 slips near pi/2):")
+    print(f"   rigid_sweep {c['rigid']:.3f} s  rigid_friction_sweep {c['inert']:.3f} s  ratio "
+          f"{c['inert'] / c['rigid']:.3f};  nfev ratio {c['nfev_inert'] / c['nfev_rigid']:.3f}; "
+          f"same statuses {c['same_status']}; max |peak ratio - 1| {c['max_peak_rel']:.1e}")
+    t0, t1 = inert_front_end(max(2, rep - 2), 20 if quick else 30)
+    print(f"   front end, early exit on (the rigid kernel's early decision; the friction kernel has "
+          f"none): {t0:.3f} s vs {t1:.3f} s, ratio {t1 / t0:.2f}")
+    s = spectra_50(n50)
+    base = s["none"][0]
+    print(f"3. {n50}x{n50} spectra (all threads, wall time, early exit on):")
+    for k, (t, df) in s.items():
+        counts = df["outcome"].value_counts().to_dict()
+        print(f"   {k:<6} {t:7.2f} s  ({n50 * n50 / t:7.0f} runs/s)  ratio to rigid {t / base:5.2f}  {counts}")
+
+
+# ---------------------------------------------------------------- pytest-benchmark
+@pytest.mark.parametrize("name", ["none", "inf", "mu10", "mu0.4"])
+def test_bench_spectrum_30x30(benchmark, name):
+    benchmark.group = "friction spectrum 30x30 one-sine (early exit where the kernel has it)"
+    fric = {"none": None, "inf": INF, "mu10": INERT, "mu0.4": REAL["mu0.4"]}[name]
+    df = benchmark.pedantic(spectrum, args=(fric, 30), rounds=2, iterations=1, warmup_rounds=1)
+    assert (df["outcome"] != "failed").all()
+
+
+@pytest.mark.parametrize("name", ["none", "inf"])
+def test_bench_record_scene(benchmark, name):
+    benchmark.group = "El Centro scene, one run"
+    sc = record_scene(None if name == "none" else INF)
+    benchmark.pedantic(sc.run, rounds=10, iterations=1, warmup_rounds=1)
+
+
+def test_bench_friction_spectrum_50x50(benchmark):
+    benchmark.group = "friction spectrum 50x50"
+    df = benchmark.pedantic(spectrum, args=(REAL["mu0.4"], 50), rounds=1, iterations=1, warmup_rounds=1)
+    assert (df["outcome"] != "failed").all()
+    assert df.attrs["kernel"] == "rigid_friction"
+    print(f"\n50x50 friction spectrum (mu_s 0.4): outcomes {df['outcome'].value_counts().to_dict()}")
+
+
+def test_inf_friction_within_5_percent_of_no_friction():
+    r = inf_vs_none(repeats=4, n=30)
+    scene = r["scene_inf"] / r["scene_none"]
+    spec = r["spectrum_inf"] / r["spectrum_none"]
+    print(f"\nFriction(inf)/none, 1 thread CPU time: scene run {scene:.3f}, 30x30 spectrum {spec:.3f}")
+    assert spec <= 1.05 and scene <= 1.05
+
+
+def test_inert_friction_cost():
+    c = inert_cost(repeats=2, n=20)
+    print(f"\nmu=10 / rigid (kernels, 1 thread, no early exit, {c['cells']} cells): "
+          f"{c['inert'] / c['rigid']:.3f} (nfev ratio {c['nfev_inert'] / c['nfev_rigid']:.3f})")
+    assert c["same_status"] and c["max_peak_rel"] < 1e-5
+    assert c["inert"] / c["rigid"] < 3.0
+
+
+def test_inf_friction_scene_never_imports_the_friction_kernel():
+    code = ("import sys, math, fastrock as fr\nfrom fastrock.scene import Scene\n"
+            "b = fr.RigidBlock.rectangle(0.25, 1.0)\n"
+            "Scene(b, excitation=fr.Pulse(0.3, 1.0), friction=fr.Friction(math.inf)).run()\n"
+            "print('fastrock.kernels.friction' in sys.modules)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "False"
+
+
+if __name__ == "__main__":
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--quick", action="store_true", help="fewer repeats, 30x30 instead of 50x50")
+    report(ap.parse_args().quick)
