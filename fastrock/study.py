@@ -96,10 +96,11 @@ __all__ = [
 
 #: Intensity measures a study's levels can be given in (module docstring).
 MEASURES = ("pga", "pgv", "pga_over_g_tan_alpha", "scale")
-#: Rows per chunk.  bench/bench_study.py: the per-chunk overhead (packing,
-#: Parquet file, Dask round trip) stays under 5 % of a chunk's run time from
-#: about 32 rows (local) / 64 rows (2 Dask workers) for records of 30-40 s;
-#: 128 leaves a margin for shorter records and busier machines.
+#: Rows per chunk.  bench/bench_study.py on the 2-core machine: 20-32 ms of
+#: overhead per chunk (packing, kernel launch, Parquet file, Dask round trip)
+#: against 9-12 ms of wall time per row (records of 30-40 s), so chunks of
+#: 34-64 rows or more keep it under 5 %; 128 (about 2 %) leaves a margin for
+#: shorter records and busier machines.
 DEFAULT_CHUNK_SIZE = 128
 #: Seconds to wait for a scheduler given by address.
 CONNECT_TIMEOUT = 10.0
@@ -126,7 +127,8 @@ kernel                compiled kernel that ran the row
 alpha [rad], p [rad/s], e [-], b [m], h [m]   body (b, h NaN if unknown)
 record_pga_g [g], record_pgv [m/s], mean_period Tm [s], duration [s]   unscaled record
 scale                 factor applied to the record [-]
-pga_g                 PGA of the scaled record / g [-]
+pga_g                 PGA of the scaled record / g [-]  (the study's own measure equals
+                      the level exactly; the samples' max differs by an ulp or two)
 pgv                   PGV of the scaled record [m/s]
 pga_over_g_tan_alpha  PGA / (g tan alpha), g of the body [-]
 omega_p_over_p        (2 pi / Tm) / p, Tm as pulse-period proxy [-]
@@ -497,13 +499,24 @@ class _Plan:
                                                       np.arange(nl), indexing="ij"))
         self.rec, self.body, self.var, self.lvl = R, B, W, Lv
         self.n = R.size
+        # per-record measures, computed once (mean_period is an FFT per call)
         pga = np.array([r.pga for r in prep.records])
         pgv = np.array([r.pgv for r in prep.records])
         tm = np.array([r.mean_period for r in prep.records])
+        self.rec_cols = {"record_pga_g": pga / G_STANDARD, "record_pgv": pgv, "mean_period": tm,
+                         "duration": np.array([r.duration for r in prep.records])}
+        self.rec_names = np.array([r.name for r in prep.records], dtype=object)
+        self.body_labels = np.array(prep.body_labels, dtype=object)
+        self.variant_names = np.array(prep.variant_names, dtype=object)
         alpha = np.array([b.alpha for b in prep.bodies])
         p = np.array([b.p for b in prep.bodies])
         g_body = np.array([b.g for b in prep.bodies])
         uplift = g_body * np.tan(alpha)
+        self.body_cols = {"alpha": alpha, "p": p,
+                          "e": np.array([b.e for b in prep.bodies], float),
+                          "b": np.array([_nan(getattr(b, "b", None)) for b in prep.bodies]),
+                          "h": np.array([_nan(getattr(b, "h", None)) for b in prep.bodies])}
+        self.wall_gaps = np.array([_wall_gap(w) for w in prep.walls], float)
         level = prep.levels[Lv]
         if prep.measure == "pga":
             scale = level * G_STANDARD / pga[R]
@@ -521,6 +534,12 @@ class _Plan:
         self.im = {"pga_g": scale * pga[R] / G_STANDARD, "pgv": scale * pgv[R],
                    "pga_over_g_tan_alpha": scale * pga[R] / uplift[B],
                    "omega_p_over_p": (2.0 * math.pi / tm[R]) / p[B]}
+        # the study's own measure is the level itself (the scaled samples'
+        # value differs by an ulp or two), so that rows of one level share
+        # one IM value: df[df.pga_g == 0.3] selects the level
+        own = {"pga": "pga_g", "pgv": "pgv", "pga_over_g_tan_alpha": "pga_over_g_tan_alpha"}
+        if prep.measure in own:
+            self.im[own[prep.measure]] = level.copy()
         kname = np.array([prep.specs[b, v].name for b, v in zip(B, W)], dtype=object)
         self.kernel = kname
         self.chunks = []
@@ -562,8 +581,9 @@ class _Plan:
                 "rows": rows.astype(np.int64), "Y0": np.zeros((m, spec0.n_state)),
                 "PAR": PAR, "HDR": HDR, "smp": smp, "OPT": OPT, "numba_threads": 0}
 
-    def frame(self, chunk, result):
-        """The chunk's table from the kernel output of :func:`run_chunk`."""
+    def columns(self, chunk, result):
+        """The chunk's table (column name -> array, in :data:`RESULT_COLUMNS`
+        order) from the kernel output of :func:`run_chunk`."""
         prep = self.prep
         order = np.argsort(result["rows"], kind="stable")
         rows = result["rows"][order]
@@ -571,37 +591,30 @@ class _Plan:
             raise StudyError(f"chunk {chunk.id}: the worker returned other rows than asked")
         status = result["status"][order]
         MET = result["met"][order]
+        m = rows.size
         R, B, W = self.rec[rows], self.body[rows], self.var[rows]
-        bodies, recs = prep.bodies, prep.records
-        alpha = np.array([bodies[k].alpha for k in B])
-        outcome = [outcome_of(c) for c in status]
-        df = pd.DataFrame({
+        alpha = self.body_cols["alpha"][B]
+        outcome = np.array([outcome_of(c) for c in status], dtype=object)
+        return {
             "row": rows.astype(np.int64),
-            "chunk": chunk.id,
+            "chunk": np.full(m, chunk.id, dtype=object),
             "record_index": R.astype(np.int64),
-            "record": [recs[k].name for k in R],
+            "record": self.rec_names[R],
             "body_index": B.astype(np.int64),
-            "body": [prep.body_labels[k] for k in B],
+            "body": self.body_labels[B],
             "variant_index": W.astype(np.int64),
-            "variant": [prep.variant_names[k] for k in W],
-            "wall_gap": np.array([_wall_gap(prep.walls[k]) for k in W], float),
+            "variant": self.variant_names[W],
+            "wall_gap": self.wall_gaps[W],
             "level_index": self.lvl[rows].astype(np.int64),
-            "measure": prep.measure,
+            "measure": np.full(m, prep.measure, dtype=object),
             "level": self.level[rows],
-            "kernel": chunk.kernel,
-            "alpha": alpha,
-            "p": np.array([bodies[k].p for k in B]),
-            "e": np.array([bodies[k].e for k in B], float),
-            "b": np.array([_nan(getattr(bodies[k], "b", None)) for k in B]),
-            "h": np.array([_nan(getattr(bodies[k], "h", None)) for k in B]),
-            "record_pga_g": np.array([recs[k].pga_g for k in R]),
-            "record_pgv": np.array([recs[k].pgv for k in R]),
-            "mean_period": np.array([recs[k].mean_period for k in R]),
-            "duration": np.array([recs[k].duration for k in R]),
+            "kernel": np.full(m, chunk.kernel, dtype=object),
+            **{k: v[B] for k, v in self.body_cols.items()},
+            **{k: v[R] for k, v in self.rec_cols.items()},
             "scale": self.scale[rows],
             **{k: v[rows] for k, v in self.im.items()},
             "outcome": outcome,
-            "status": [status_of(c) for c in status],
+            "status": np.array([status_of(c) for c in status], dtype=object),
             "status_code": status.astype(np.int64),
             "overturned": np.isin(outcome, COLLAPSE_OUTCOMES),
             "max_rotation_ratio": MET[:, L.M_MAX_ABS_THETA] / alpha,
@@ -609,8 +622,11 @@ class _Plan:
             "time_uplift": MET[:, L.M_T_UPLIFT], "time_overturn": MET[:, L.M_T_OVER],
             "time_end": MET[:, L.M_T_FINAL], "nfev": MET[:, L.M_NFEV],
             "steps": MET[:, L.M_NSTEPS], "rejected_steps": MET[:, L.M_NREJECT],
-        })
-        return df
+        }
+
+    def frame(self, chunk, result):
+        """:meth:`columns` as a DataFrame (as :func:`load_results` reads it)."""
+        return _arrow_table(self.columns(chunk, result), "").to_pandas()
 
 
 def _nan(x):
@@ -693,14 +709,24 @@ def _atomic_write_bytes(path, data):
     os.replace(tmp, path)
 
 
-def _write_chunk(folder, cid, df, study_hash):
+def _arrow_table(cols, study_hash):
+    """A pyarrow Table of the chunk columns (object arrays -> string), with
+    the study hash in the schema metadata.  Built from the arrays directly:
+    going through pandas costs more than the rest of a small chunk."""
     import pyarrow as pa
+    arrays = {k: pa.array(v, type=pa.string()) if v.dtype == object else pa.array(v)
+              for k, v in cols.items()}
+    return pa.table(arrays, metadata={b"fastrock_study": study_hash.encode()})
+
+
+def _write_chunk(folder, cid, cols, study_hash):
+    """Write the chunk's file atomically (temporary name, then os.replace)."""
     import pyarrow.parquet as pq
     path = _chunk_path(folder, cid)
-    table = pa.Table.from_pandas(df, preserve_index=False)
-    meta = dict(table.schema.metadata or {})
-    meta[b"fastrock_study"] = study_hash.encode()
-    table = table.replace_schema_metadata(meta)
+    if isinstance(cols, pd.DataFrame):
+        cols = {k: cols[k].to_numpy(dtype=object if cols[k].dtype.kind not in "biuf" else None)
+                for k in cols.columns}
+    table = _arrow_table(cols, study_hash)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
     pq.write_table(table, tmp)
     os.replace(tmp, path)
@@ -795,10 +821,11 @@ def load_results(folder):
         t = pq.read_table(path)
         if (t.schema.metadata or {}).get(b"fastrock_study") != man["study_hash"].encode():
             raise StudyError(f"{path} belongs to another study")
-        frames.append(t.to_pandas())
+        frames.append(t.replace_schema_metadata(None))
     if frames:
-        df = pd.concat(frames, ignore_index=True).sort_values("row", kind="stable")
-        df = df.reset_index(drop=True)
+        import pyarrow as pa
+        df = pa.concat_tables(frames).to_pandas()
+        df = df.sort_values("row", kind="stable").reset_index(drop=True)
     else:
         df = pd.DataFrame()
     df.attrs.update(study_hash=man["study_hash"], complete=not missing, missing_chunks=missing,
@@ -888,8 +915,7 @@ def run_study(study, output, backend=None, client=None, scheduler=None, chunk_si
         done_before = n_total - len(todo)
 
         def finish(chunk, result):
-            df = plan.frame(chunk, result)
-            _write_chunk(folder, chunk.id, df, prep.hash)
+            _write_chunk(folder, chunk.id, plan.columns(chunk, result), prep.hash)
             stats["kernel_seconds"] += float(result["seconds"])
             stats["chunks_run"] += 1
             bar.update(chunk.rows.size)
@@ -986,7 +1012,7 @@ def _run_dask(client, plan, todo, finish, retries, numba_threads):
         by_key[fut.key] = chunk
         futures.append(fut)
     failed = []
-    ac = as_completed(futures)
+    ac = as_completed(futures, loop=client.loop)     # this client, even if not the default
     try:
         for fut in ac:
             chunk = by_key[fut.key]
@@ -1242,7 +1268,12 @@ def fit_fragility(df, im="pga_g", threshold=None, *, n_boot=200, seed=0, ci=0.90
         event = f"max_rotation_ratio > {threshold:g}"
     if y.size == 0:
         raise ValueError("fit_fragility: no finished rows")
-    xs, xi = np.unique(x, return_inverse=True)
+    # one group per IM value; values a few ulps apart (IMs computed from the
+    # scale factor, e.g. PGA/(g tan alpha) of a PGA study) are one group, at
+    # their mean
+    key = np.round(np.log(x) * 1e10).astype(np.int64)
+    _, xi = np.unique(key, return_inverse=True)
+    xs = np.bincount(xi, weights=x) / np.bincount(xi)
     rec_codes, rec_of_row = np.unique(d["record"].to_numpy(object).astype(str), return_inverse=True)
     nrec = rec_codes.size
     lnx = np.log(xs)
@@ -1332,12 +1363,10 @@ def plot_fragility(fits, ax=None, im_max=None, band=True, points=True, title=Non
     ax.set_xlabel(IM_LABELS.get(fits[0].im, fits[0].im))
     ax.set_ylabel("P(event | IM)")
     ax.grid(True, alpha=0.3)
-    if band:
-        ax.text(0.99, 0.02, f"bands: {fits[0].ci:.0%} bootstrap over records",
-                transform=ax.transAxes, ha="right", va="bottom", fontsize=8, color="0.35")
     if title:
         ax.set_title(title)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc="lower right", title_fontsize=8,
+              title=f"bands: {fits[0].ci:.0%} bootstrap over records" if band else None)
     return fig
 
 
