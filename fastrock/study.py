@@ -10,7 +10,10 @@ dataset in the output folder (atomically: a temporary name, then
 ``os.replace``).  A ``manifest.json`` holds the study's hash and its chunk
 list; a rerun into the same folder skips the chunks whose file exists, so an
 interrupted study resumes where it stopped.  :func:`load_results` reads the
-dataset back as one DataFrame.
+dataset back as one DataFrame.  The hash covers what the runs depend on
+(record samples and names, bodies, variants, levels, measure, solver,
+``t_after``, ``early_exit``), not the fastrock version: after an upgrade
+start a new folder rather than mixing the results of two versions.
 
 Backends
 --------
