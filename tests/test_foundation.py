@@ -348,8 +348,11 @@ def test_rigid_scene_does_not_import_foundation_kernels():
     subprocess.run([sys.executable, "-c", code], check=True)
 
 
-def test_sweep_kernel_matches_simulate():
-    fnd = TwoSpringFoundation.from_vibration(BODY, 40.0, 0.1)
+@pytest.mark.parametrize("fnd", [TwoSpringFoundation.from_vibration(BODY, 40.0, 0.1),
+                                 SwitchingFoundation.from_vibration(BODY, 40.0, 0.1, 0.9),
+                                 LinearVibration.from_vibration(BODY, 40.0, 0.1)],
+                         ids=["two-spring", "switching", "linear"])
+def test_sweep_kernel_matches_simulate(fnd):
     spec, blk = F.foundation_spec(BODY, fnd, 1.0)
     hdr = np.zeros(L.N_EXC)
     opt = fr.Solver(rtol=1e-9).options(2.0, False)
@@ -358,14 +361,15 @@ def test_sweep_kernel_matches_simulate():
     n = len(th0s)
     status = np.zeros(n, np.int64)
     MET = np.zeros((n, L.N_MET))
-    YF = np.zeros((n, 4))
-    K.two_spring_sweep(Y0, np.tile(spec.par, (n, 1)), np.tile(hdr, (n, 1)), np.zeros(1),
-                       np.tile(opt, (n, 1)), status, MET, YF)
+    YF = np.zeros((n, spec.n_state))
+    getattr(K, f"{spec.name}_sweep")(Y0, np.tile(spec.par, (n, 1)), np.tile(hdr, (n, 1)),
+                                     np.zeros(1), np.tile(opt, (n, 1)), status, MET, YF)
+    it = spec.state_names.index("theta")
     for i, t in enumerate(th0s):
         r = simulate_foundation(BODY, fnd, theta0=t, duration=2.0, rtol=1e-9)
         assert status[i] == r.status_code
         assert MET[i, L.M_MAX_ABS_THETA] == r.metrics["max_rotation"]
-        assert YF[i, 2] == r.history["theta"].iloc[-1]
+        assert YF[i, it] == r.history["theta"].iloc[-1]
 
 
 # ------------------------------------------------------------------------ fitting
