@@ -24,8 +24,13 @@ class Friction:
     slide_tolerance: float = DEFAULT_SLIDE_TOLERANCE
 
     def __post_init__(self):
-        if isinstance(self.mu_s, bool):
-            raise ValueError("mu_s must be a number")
+        for name in ("mu_s", "mu_k", "slide_tolerance"):
+            v = getattr(self, name)
+            if v is None and name == "mu_k":
+                continue
+            if isinstance(v, bool) or not isinstance(v, (int, float)):
+                raise ValueError(f"{name} must be a number, got {v!r}")
+            object.__setattr__(self, name, float(v))
         if not (isinstance(self.mu_s, (int, float)) and math.isinf(self.mu_s) and self.mu_s > 0):
             V.non_negative("mu_s", self.mu_s)
         if self.mu_k is None:

@@ -250,20 +250,9 @@ def impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
     met[M_T_LAST_IMPACT] = t
     y[0] = 0.0
-    if disc[D_MODE] == MODE_ROCK:
-        post = e * pre
-        y[1] = post
-        log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)
-        if abs(post) < opt[O_EPS_OMEGA] or chatter:
-            y[1] = 0.0
-            st = start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
-            if disc[D_MODE] == MODE_REST:
-                log_event(log, cnt, t, EV_REST, post, 0.0, 0.0, 0)
-            return st
-        disc[D_PIVOT] = -s
-        return RUNNING
-    # slide-rocking: plastic impact with stick at the new corner, then the
-    # impulse-ratio check for a slipping impact
+    # plastic impact with stick at the new corner (in ROCK the slip velocity
+    # is 0 and this is Housner's map), then the impulse-ratio check: the
+    # impact slips when friction cannot supply the tangential impulse
     vs = y[3]
     post = e * pre + (h / i0) * vs
     lam_x = h * post - (vs + h * pre)
@@ -280,7 +269,10 @@ def impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)
     if abs(post) < opt[O_EPS_OMEGA] or chatter:
         y[1] = 0.0
-        return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+        st = start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+        if disc[D_MODE] == MODE_REST:
+            log_event(log, cnt, t, EV_REST, post, 0.0, 0.0, 0)
+        return st
     if dpost != 0.0:
         sig = 1 if dpost > 0.0 else -1
         set_mode(disc, MODE_SLIDE_ROCK, -s, sig)
@@ -311,6 +303,7 @@ def stick(t, y, par, disc, hdr, smp, met, log, cnt):
 @jit
 def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     if k < 0:
+        book_time(t, disc, met)
         return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
     mode = disc[D_MODE]
     s = disc[D_PIVOT]

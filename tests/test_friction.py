@@ -19,25 +19,8 @@ Oracles, none of them the kernel under test:
 8. bad input; 9. effect selection (subprocess: the friction kernel is never imported without
    friction).
 
-Bugs found, pinned with ``xfail(strict=True)``:
-
-* fastrock/friction.py ``Friction.__post_init__``: ``Friction("0.3")`` raises TypeError ('>' not
-  supported between float and str, line 35) and ``Friction(0.3, "0.2")`` TypeError from
-  ``math.isinf`` (line 33) instead of a ValueError naming the field.
-* kernels/friction.py ``transition`` (line ~313): the end of a static REST phase (k < 0) calls
-  ``start_from_flat`` without ``book_time`` first, so ``M_T_PREV`` still holds the time the REST
-  phase began and the whole REST interval is booked to the mode that follows: a rectangular
-  pulse starting at t = 2 s gives ``time_sliding`` = 2.75 s instead of 0.75 s (also
-  ``time_slide_rocking``).
-* kernels/friction.py ``impact`` (lines ~253-262): an impact in ROCK mode applies
-  theta'+ = e theta'-, d'+ = 0 without the impulse-ratio check that the slide-rock branch makes
-  (the same map with v_s = 0).
-  The stick impact needs |L_x|/L_y = (h/b)(1 - e)/(1 + e); with a user e = 0.6 and b/h = 0.25
-  that is 1.0, so a block with mu_s = 0.3 takes dozens of impacts that need more friction than
-  it has (and the result jumps as v_s -> 0 between the two branches).  With Housner's e the
-  ratio is 3r/(4 + r^2) (r = b/h) and rocking blocks slip before such impacts in the runs tried.
-
-Run ``python tests/test_friction.py`` to print the agreement numbers.
+Bugs this file found (REST time booked to the next mode, rock impacts without the
+impulse-ratio check, string coefficients) are fixed; the tests below guard them.
 """
 from __future__ import annotations
 
@@ -205,9 +188,6 @@ def test_flight_is_detected(A):
     assert r.events["t"].iloc[-1] == pytest.approx(0.1, abs=1e-12)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "kernels/friction.py transition(): k < 0 (end of a static REST phase) calls start_from_flat "
-    "without book_time, so the REST interval before the pulse is booked as sliding time"))
 @pytest.mark.parametrize("t_start", [0.5, 2.0])
 def test_time_sliding_excludes_rest_before_the_pulse(t_start):
     """Same Newmark run, pulse delayed by t_start: the slip lasts ts - 0 = 0.75 s as before
@@ -220,9 +200,6 @@ def test_time_sliding_excludes_rest_before_the_pulse(t_start):
     assert r.metrics["time_sliding"] == pytest.approx(ts, rel=1e-9)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "kernels/friction.py transition(): REST time before the first slip is booked to the next mode "
-    "(time_slide_rocking here)"))
 def test_time_slide_rocking_excludes_rest_before_the_pulse():
     b = RigidBlock.rectangle(b=0.25, h=1.0)
     late = fr.simulate(b, rect_pulse(3.0, 0.05, t_start=2.0), friction=Friction(0.4), duration=2.1)
@@ -507,26 +484,23 @@ def test_slide_rock_impacts_match_impulse_momentum_and_dissipate():
     assert 200 < n_slip < 800 and 0 < n_pull < 100
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "kernels/friction.py impact(): a ROCK-mode impact applies theta'+ = e theta'-, d'+ = 0 "
-    "without the impulse-ratio check |L_x| <= mu_s L_y that the slide-rock branch makes"))
 def test_rock_impacts_respect_coulomb():
     """User e = 0.6, b/h = 0.25, mu_s = 0.3: free rocking in stick (no slip before the impacts).
     The stick impact needs |L_x|/L_y = (h/b)(1 - e)/(1 + e) = 1.0 > mu_s, so each impact must
-    slip.  Measured: 39 stick impacts, ratio 1.0 each, d stays 0."""
+    slip: every impact (from rock or slide-rock) must keep |L_x| <= mu_s L_y."""
     body = RigidBlock.rectangle(b=0.25, h=1.0, e=0.6)
     r = fr.simulate(body, None, friction=Friction(0.3), theta0=0.5 * body.alpha, duration=2.0)
     h = r.history
     piv = h["pivot"].to_numpy()
     ratios = []
     for i in np.flatnonzero(np.diff(h["t"].to_numpy()) == 0):
-        if h["contact"].iloc[i] == "rock" and piv[i + 1] == -piv[i]:
+        if h["contact"].iloc[i] in ("rock", "slide-rock") and piv[i + 1] == -piv[i]:
             pre, post = h["theta_dot"].iloc[i], h["theta_dot"].iloc[i + 1]
             vs, dpost = h["d_dot"].iloc[i], h["d_dot"].iloc[i + 1]
             lx = (dpost + 1.0 * post) - (vs + 1.0 * pre)
             ly = -piv[i] * 0.25 * (post + pre)
             ratios.append(abs(lx) / ly)
-    assert len(ratios) > 10
+    assert len(ratios) >= 3    # every impact in the 2 s run (they slip, so rocking decays slowly)
     assert max(ratios) <= 0.3 * (1 + 1e-9)
 
 
@@ -772,10 +746,6 @@ def test_bad_friction(kw, field):
         Friction(**kw)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "fastrock/friction.py __post_init__: a str mu_s passes V.non_negative (float('0.3')) but is "
-    "stored as str, then 'self.mu_k > self.mu_s' (line 35) raises TypeError; a str mu_k hits "
-    "math.isinf(str) (line 33): TypeError, not a ValueError naming the field"))
 @pytest.mark.parametrize("kw, field", [(dict(mu_s="0.3"), "mu_s"), (dict(mu_s=0.3, mu_k="0.2"), "mu_k")])
 def test_string_coefficients(kw, field):
     """Either a ValueError naming the field, or accepted and stored as a float."""
