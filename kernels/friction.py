@@ -38,7 +38,7 @@ from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      N_MET, O_EPS_OMEGA, O_EPS_T, O_T0, OVERTURN_MODE1,
                      OVERTURN_MODE2, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT,
                      SAFE_REST)
-from .rigid import P_ALPHA, P_E, P_G, P_THETA_OVER, track_rotation
+from .rigid import P_ALPHA, P_E, P_G, P_THETA_OVER, UPLIFT_RTOL, track_rotation
 
 Q_B = 10        # m, half-width
 Q_H = 11        # m, half-height (CM height above the base)
@@ -148,7 +148,7 @@ def static_margin(t, y, par, disc, hdr, smp):
     """REST holds while |a_g| <= mu_s G and |a_g| <= G b/h (physics.md 4.3)."""
     ag, av = ground(t, hdr, smp)
     G = par[P_G] + av
-    lim = min(par[Q_MU_S], par[Q_B] / par[Q_H]) * G
+    lim = min(par[Q_MU_S], par[Q_B] / par[Q_H]) * G * (1.0 + UPLIFT_RTOL)
     return min(lim - abs(ag), G)
 
 
@@ -203,7 +203,7 @@ def start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt):
         else:
             set_mode(disc, MODE_SLIDE, 1, sigma)
         return RUNNING
-    rock_demand = abs(ag) > G * b_h
+    rock_demand = abs(ag) > G * b_h * (1.0 + UPLIFT_RTOL)
     if rock_demand:
         s = -1 if ag > 0.0 else 1
         _tdd, F, N = stick_rock(t, 0.0, 0.0, s, par, hdr, smp)
@@ -226,7 +226,7 @@ def start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt):
         met[M_N_STICK_SLIP] += 1
         log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sigma)
         return RUNNING
-    if abs(ag) > mu_s * G:
+    if abs(ag) > mu_s * G * (1.0 + UPLIFT_RTOL):
         sigma = -1 if ag > 0.0 else 1
         set_mode(disc, MODE_SLIDE, 1, sigma)
         met[M_N_STICK_SLIP] += 1

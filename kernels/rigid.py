@@ -39,6 +39,11 @@ P_E_W = 7           # wall restitution
 P_HOGAN = 8         # 1: gap d = 0, Hogan's one-sided map
 N_PAR = 10
 
+# An exceedance of the uplift threshold G tan(alpha) smaller than this
+# (relative) counts as touching it: a record whose peak sits one ulp above
+# the threshold would otherwise "uplift" for no time at all.
+UPLIFT_RTOL = 1e-14
+
 N_EVENTS = 5
 K_IMPACT = 0
 K_OVERTURN = 1
@@ -83,7 +88,7 @@ def static_margin(t, y, par, disc, hdr, smp):
     """Full contact holds while |a_g| <= G tan(alpha) (physics.md 1); the
     static phase ends when this margin becomes negative."""
     ag, av = ground(t, hdr, smp)
-    return (par[P_G] + av) * math.tan(par[P_ALPHA]) - abs(ag)
+    return (par[P_G] + av) * math.tan(par[P_ALPHA]) * (1.0 + UPLIFT_RTOL) - abs(ag)
 
 
 @jit
@@ -105,7 +110,7 @@ def start_rocking_or_rest(t, y, par, disc, hdr, smp, met, log, cnt):
     if G <= 0.0:
         log_event(log, cnt, t, EV_FLIGHT, 0.0, 0.0, y[0], disc[D_PIVOT])
         return FLIGHT
-    if abs(ag) > G * math.tan(par[P_ALPHA]):
+    if abs(ag) > G * math.tan(par[P_ALPHA]) * (1.0 + UPLIFT_RTOL):
         disc[D_MODE] = MODE_ROCK
         disc[D_STATIC] = 0
         disc[D_PIVOT] = -1 if ag > 0.0 else 1

@@ -74,7 +74,8 @@ from .rigid import (K_FLIGHT, K_IMPACT, K_OVERTURN, P_ALPHA, P_E, P_E_W, P_G,
                     P_HOGAN, P_THETA_OVER, P_THETA_W, P_WALL_SIDE,
                     free_energy, ground_impact, init_state as rigid_init_state,
                     observe, overturned, peak_from_energy, rhs,
-                    start_rocking_or_rest, theta_ddot, track_rotation)
+                    start_rocking_or_rest, theta_ddot, track_rotation,
+                    UPLIFT_RTOL)
 from .rigid import event as rigid_event
 from .rigid import static_margin as rest_margin
 
@@ -116,7 +117,7 @@ def hogan_rest_margin(t, par, hdr, smp):
     from the wall only); the wall blocks any uplift toward it."""
     ag, av = ground(t, hdr, smp)
     G = par[P_G] + av
-    return min(G * math.tan(par[P_ALPHA]) - par[P_WALL_SIDE] * ag, G)
+    return min(G * math.tan(par[P_ALPHA]) * (1.0 + UPLIFT_RTOL) - par[P_WALL_SIDE] * ag, G)
 
 
 @jit
@@ -134,7 +135,7 @@ def start_from_rest(t, y, par, disc, hdr, smp, met, log, cnt):
     if par[P_HOGAN] != 0.0:
         ag, av = ground(t, hdr, smp)
         G = par[P_G] + av
-        if G > 0.0 and par[P_WALL_SIDE] * ag <= G * math.tan(par[P_ALPHA]):
+        if G > 0.0 and par[P_WALL_SIDE] * ag <= G * math.tan(par[P_ALPHA]) * (1.0 + UPLIFT_RTOL):
             disc[D_MODE] = MODE_REST
             disc[D_STATIC] = 1
             return RUNNING

@@ -268,3 +268,19 @@ def test_grazing_impact_inside_one_fixed_step():
         assert imp["velocity_before"].iloc[0] == pytest.approx(w_ref, abs=tol)
     assert coarse.status == fine.status
     assert coarse.metrics["max_rotation"] == pytest.approx(fine.metrics["max_rotation"], rel=1e-4)
+
+
+@pytest.mark.parametrize("factor", [1.0, 1 + 1e-15, 1 + 1e-13, 1 + 1e-9])
+def test_record_peak_at_the_uplift_threshold(factor):
+    """A record scaled so that its peak sits on g tan(alpha) (up to a few ulp) must not
+    end in a transition loop: a touch is no uplift, a real exceedance rocks and settles."""
+    from fastrock.records import load_default_record
+    rec = load_default_record()
+    body = fr.RigidBlock.rectangle(b=0.25, h=1.25)
+    scale = body.g * math.tan(body.alpha) / rec.pga * factor
+    res = fr.simulate(body, fr.SampledMotion.from_record(rec, scale=scale), t_after=2.0,
+                      max_steps=BUDGET)
+    assert not res.status.startswith("failed"), res.status
+    assert res.outcome == "safe"
+    if factor <= 1 + 1e-15:
+        assert res.status == "safe:no-uplift"
