@@ -31,6 +31,7 @@ toward_wall         True if the pulse first throws the block toward the wall
 time_uplift         first uplift                             [s]
 time_overturn       overturning time (NaN if safe)           [s]
 time_end            time at which the run stopped            [s]
+theta_end, theta_dot_end  state when the run stopped          [rad, rad/s]
 nfev                right-hand-side evaluations
 max_slide, residual_slide  max |d| and final d (with friction)  [m]
 time_sliding, time_slide_rocking, stick_slip  (with friction)
@@ -119,6 +120,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         "amplitude": amp, "amplitude_g": amp / body.g, "frequency_hz": omega / (2 * np.pi),
     })
     df = _add_results(df, status, MET, body, wall, friction if spec.name == "rigid_friction" else None)
+    df["theta_end"] = YF[:, spec.theta_index]
+    df["theta_dot_end"] = YF[:, spec.theta_index + 1]
     df = df.iloc[:done].reset_index(drop=True)
     df.attrs.update(interrupted=done < n, kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e,
                     pulse=pulse, solver=solver.name)
