@@ -56,17 +56,16 @@ re-contact impact), FLIGHT (switching model only: G <= 0 while rocking).
 import math
 
 import numpy as np
-from numba import prange
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import N_COUNTERS, integrate_hybrid, log_event
+from .hybrid import integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_CONTACT, EV_FLIGHT,
                      EV_IMPACT, EV_PASS_ALPHA, EV_UPLIFT, FLIGHT, M_IMPACTS,
                      M_T_CONTACT, M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA,
                      M_T_PREV, M_T_ROCK, M_T_UPLIFT, MODE_FLIGHT, MODE_REST,
-                     MODE_ROCK, N_DISC, N_LOG, N_MET, O_T0, RUNNING,
-                     SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
+                     MODE_ROCK, N_DISC, N_MET, O_T0, RUNNING, SAFE_MOVING,
+                     SAFE_NO_UPLIFT, SAFE_REST)
 from .rigid import (N_PAR as N_RIGID_PAR, P_ALPHA, P_G, P_P, P_THETA_OVER,
                     overturned, theta_ddot, track_rotation)
 
@@ -619,47 +618,19 @@ def linear_sdof_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                            hist_d, log, cnt)
 
 
-@jit
-def _no_output(n_state):
-    return (np.empty(0), np.empty(0), np.empty((0, n_state)),
-            np.empty((0, 3), dtype=np.int64), np.empty((0, N_LOG)),
-            np.zeros(N_COUNTERS, dtype=np.int64))
-
-
 @jit_parallel
 def two_spring_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
     """Many independent two-spring runs in parallel (see rigid_sweep)."""
-    for i in prange(Y0.shape[0]):
-        y = Y0[i].copy()
-        met = np.empty(N_MET)
-        t_eval, hist_t, hist_y, hist_d, log, cnt = _no_output(y.shape[0])
-        status[i] = two_spring_run(y, PAR[i], HDR[i], smp, OPT[i], t_eval,
-                                   met, hist_t, hist_y, hist_d, log, cnt)
-        MET[i, :] = met
-        YF[i, :] = y
+    sweep_rows(two_spring_run, Y0, PAR, HDR, smp, OPT, status, MET, YF)
 
 
 @jit_parallel
 def switching_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
     """Many independent switching-SDOF runs in parallel (see rigid_sweep)."""
-    for i in prange(Y0.shape[0]):
-        y = Y0[i].copy()
-        met = np.empty(N_MET)
-        t_eval, hist_t, hist_y, hist_d, log, cnt = _no_output(y.shape[0])
-        status[i] = switching_run(y, PAR[i], HDR[i], smp, OPT[i], t_eval, met,
-                                  hist_t, hist_y, hist_d, log, cnt)
-        MET[i, :] = met
-        YF[i, :] = y
+    sweep_rows(switching_run, Y0, PAR, HDR, smp, OPT, status, MET, YF)
 
 
 @jit_parallel
 def linear_sdof_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
     """Many independent linear-SDOF runs in parallel (see rigid_sweep)."""
-    for i in prange(Y0.shape[0]):
-        y = Y0[i].copy()
-        met = np.empty(N_MET)
-        t_eval, hist_t, hist_y, hist_d, log, cnt = _no_output(y.shape[0])
-        status[i] = linear_sdof_run(y, PAR[i], HDR[i], smp, OPT[i], t_eval,
-                                    met, hist_t, hist_y, hist_d, log, cnt)
-        MET[i, :] = met
-        YF[i, :] = y
+    sweep_rows(linear_sdof_run, Y0, PAR, HDR, smp, OPT, status, MET, YF)

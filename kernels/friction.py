@@ -23,21 +23,19 @@ Events (g > 0 admissible):
 import math
 
 import numpy as np
-from numba import prange
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import N_COUNTERS, integrate_hybrid, log_event
+from .hybrid import integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_IMPACT, EV_OVERTURN, EV_PASS_ALPHA, EV_REST, EV_SLIP,
                      EV_STICK, EV_UPLIFT, FLIGHT, M_IMPACTS, M_MAX_SLIDE,
                      M_N_STICK_SLIP, M_RESIDUAL_SLIDE, M_T_LAST_IMPACT,
-                     M_T_OVER, M_T_PASS_ALPHA, M_T_PREV, M_T_ROCK,
-                     M_T_SLIDE, M_T_SLIDE_ROCK, M_T_UPLIFT, MODE_REST,
-                     MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK, N_DISC, N_LOG,
-                     N_MET, O_EPS_OMEGA, O_EPS_T, O_T0, OVERTURN_MODE1,
-                     OVERTURN_MODE2, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT,
-                     SAFE_REST)
+                     M_T_OVER, M_T_PASS_ALPHA, M_T_PREV, M_T_ROCK, M_T_SLIDE,
+                     M_T_SLIDE_ROCK, M_T_UPLIFT, MODE_REST, MODE_ROCK,
+                     MODE_SLIDE, MODE_SLIDE_ROCK, N_DISC, N_MET, O_EPS_OMEGA,
+                     O_EPS_T, O_T0, OVERTURN_MODE1, OVERTURN_MODE2, RUNNING,
+                     SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
 from .rigid import P_ALPHA, P_E, P_G, P_THETA_OVER, UPLIFT_RTOL, track_rotation
 
 Q_B = 10        # m, half-width
@@ -402,19 +400,4 @@ def rigid_friction_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t,
 @jit_parallel
 def rigid_friction_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
     """Independent runs in parallel (rows of Y0/PAR/HDR/OPT)."""
-    n = Y0.shape[0]
-    for i in prange(n):
-        y = Y0[i].copy()
-        met = np.empty(N_MET)
-        t_eval = np.empty(0)
-        hist_t = np.empty(0)
-        hist_y = np.empty((0, 4))
-        hist_d = np.empty((0, 3), dtype=np.int64)
-        log = np.empty((0, N_LOG))
-        cnt = np.zeros(N_COUNTERS, dtype=np.int64)
-        status[i] = run(y, PAR[i], HDR[i], smp, OPT[i], t_eval, met, hist_t,
-                        hist_y, hist_d, log, cnt)
-        for j in range(N_MET):
-            MET[i, j] = met[j]
-        for j in range(y.shape[0]):
-            YF[i, j] = y[j]
+    sweep_rows(run, Y0, PAR, HDR, smp, OPT, status, MET, YF)

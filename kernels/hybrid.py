@@ -26,6 +26,7 @@ Continuous phases use ``dopri``; breakpoints (pulse ends, record samples)
 are never stepped over, and the rhs is re-evaluated just after one.
 """
 import numpy as np
+from numba import prange
 
 from .config import jit, jit_generic, next_up, ulp
 from .dopri import (N_STAGES, dense_coefficients, dense_eval, error_norm,
@@ -34,7 +35,7 @@ from .excitation import excitation_end, next_breakpoint, scan_origin, scan_step
 from .layout import (D_STATIC, FAIL_EVENT, FAIL_NONFINITE, FAIL_OUTPUT_FULL,
                      FAIL_STEP_BUDGET, FAIL_STEP_UNDERFLOW, FAIL_TRANSITIONS,
                      LOG_KIND, LOG_PIVOT, LOG_POST, LOG_PRE, LOG_T, LOG_THETA,
-                     M_N_EVENTS, M_NFEV, M_NREJECT, M_NSTEPS, M_T_EXC_END,
+                     M_N_EVENTS, M_NFEV, M_NREJECT, M_NSTEPS, M_T_EXC_END, N_LOG, N_MET,
                      M_T_FINAL, O_ATOL, O_DT_FIXED, O_MAX_STEP, O_MAX_STEPS,
                      O_RECORD_BREAKS, O_RTOL, O_T0, O_T_END, RUNNING)
 
@@ -475,3 +476,28 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
 
     met[M_T_FINAL] = t
     return status
+
+
+@jit_generic
+def sweep_rows(run, Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Body of every model's parallel sweep entry: row i of Y0/PAR/HDR/OPT
+    through ``run`` (the model's single-run function) into row i of
+    status/MET/YF, with no time history and no event log.  Inlined into a
+    ``jit_parallel`` entry kernel, where the prange becomes the parallel
+    loop (each iteration writes only its own rows)."""
+    n_state = Y0.shape[1]
+    for i in prange(Y0.shape[0]):
+        y = Y0[i].copy()
+        met = np.empty(N_MET)
+        t_eval = np.empty(0)
+        hist_t = np.empty(0)
+        hist_y = np.empty((0, n_state))
+        hist_d = np.empty((0, 3), dtype=np.int64)
+        log = np.empty((0, N_LOG))
+        cnt = np.zeros(N_COUNTERS, dtype=np.int64)
+        status[i] = run(y, PAR[i], HDR[i], smp, OPT[i], t_eval, met, hist_t,
+                        hist_y, hist_d, log, cnt)
+        for j in range(N_MET):
+            MET[i, j] = met[j]
+        for j in range(n_state):
+            YF[i, j] = y[j]

@@ -58,17 +58,16 @@ into the next peak away from the wall (:func:`fold_peaks`).
 import math
 
 import numpy as np
-from numba import prange
 
 from .config import jit, jit_generic, jit_parallel
 from .excitation import excitation_end, ground
-from .hybrid import N_COUNTERS, integrate_hybrid, log_event
+from .hybrid import integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_STATIC, D_WALL_REST, EV_FLIGHT,
                      EV_REST, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
                      FLIGHT, LEANING, M_IMPACTS, M_T_LAST_IMPACT, M_T_UPLIFT,
                      M_WALL_IMPACTS, MODE_REST, MODE_ROCK, MODE_WALL_REST,
-                     N_DISC, N_LOG, N_MET, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T,
-                     O_T0, RUNNING, SAFE_BOUNDED, SAFE_MOVING, SAFE_NO_UPLIFT,
+                     N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T, O_T0,
+                     RUNNING, SAFE_BOUNDED, SAFE_MOVING, SAFE_NO_UPLIFT,
                      SAFE_REST)
 from .rigid import (K_FLIGHT, K_IMPACT, K_OVERTURN, P_ALPHA, P_E, P_E_W, P_G,
                     P_HOGAN, P_THETA_OVER, P_THETA_W, P_WALL_SIDE,
@@ -344,20 +343,5 @@ def rigid_wall_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
 
 @jit_parallel
 def rigid_wall_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
-    """Many independent runs in parallel (see :func:`.rigid.rigid_sweep`)."""
-    n = Y0.shape[0]
-    for i in prange(n):
-        y = Y0[i].copy()
-        met = np.empty(N_MET)
-        t_eval = np.empty(0)
-        hist_t = np.empty(0)
-        hist_y = np.empty((0, 2))
-        hist_d = np.empty((0, 3), dtype=np.int64)
-        log = np.empty((0, N_LOG))
-        cnt = np.zeros(N_COUNTERS, dtype=np.int64)
-        status[i] = run(y, PAR[i], HDR[i], smp, OPT[i], t_eval, met, hist_t,
-                        hist_y, hist_d, log, cnt)
-        for j in range(N_MET):
-            MET[i, j] = met[j]
-        for j in range(y.shape[0]):
-            YF[i, j] = y[j]
+    """One-sided runs in parallel (rows of Y0/PAR/HDR/OPT)."""
+    sweep_rows(run, Y0, PAR, HDR, smp, OPT, status, MET, YF)
