@@ -1747,10 +1747,30 @@ def add_fit_subcommand(subparsers):
                    help="half-cycle definition of the data (default: impact)")
     p.add_argument("--min-duration", type=float, default=None,
                    help="exclude measured durations below this [s] from the fit")
+    p.add_argument("--param", metavar="NAME=VALUE", action="append", default=[],
+                   help="starting value of a fitted parameter, repeatable; the foundation "
+                        "models need them, e.g. --model two-spring --param p=4.7 "
+                        "--param omega=40 --param zeta=0.05")
     p.add_argument("--plot", metavar="PNG", default=None, help="write a figure of the fit")
     p.add_argument("--csv", metavar="CSV", default=None, help="write the fit table")
     p.set_defaults(func=run_fit_command)
     return p
+
+
+def _parse_params(items):
+    """``["p=4.7", "omega=40"]`` -> ``{"p": 4.7, "omega": 40.0}``; errors name the item."""
+    out = {}
+    for it in items:
+        name, sep, value = it.partition("=")
+        if not sep or not name.strip():
+            raise ValueError(f"--param must look like NAME=VALUE, got {it!r}")
+        try:
+            out[name.strip()] = float(value)
+        except ValueError:
+            raise ValueError(f"--param {name.strip()}: {value!r} is not a number") from None
+        if not math.isfinite(out[name.strip()]):
+            raise ValueError(f"--param {name.strip()} must be finite, got {value!r}")
+    return out
 
 
 def run_fit_command(args) -> int:
@@ -1767,8 +1787,12 @@ def run_fit_command(args) -> int:
     try:
         theta0 = None if args.theta0_deg is None else math.radians(args.theta0_deg)
         alpha = None if args.alpha_deg is None else math.radians(args.alpha_deg)
+        extra = {}
+        params0 = _parse_params(getattr(args, "param", []) or [])
+        if params0:
+            extra["params0"] = params0
         fit = fit_from_csv(args.file, theta0=theta0, alpha=alpha, model=args.model,
-                           definition=args.definition, min_duration=args.min_duration)
+                           definition=args.definition, min_duration=args.min_duration, **extra)
     except (ValueError, NotImplementedError, FileNotFoundError) as exc:
         print(f"fastrock fit: error: {exc}", file=sys.stderr)
         return 2

@@ -807,3 +807,19 @@ def test_cli_group_selection_and_errors(tmp_path, capsys):
     # missing file
     args = _parser().parse_args(["fit", str(tmp_path / "nope.csv"), "--alpha-deg", "14.8"])
     assert run_fit_command(args) == 2
+
+
+def test_cli_param_option_parsing_and_errors(capsys):
+    import argparse
+    from fastrock.freerocking import _parse_params, add_fit_subcommand
+    assert _parse_params(["p=4.7", " omega = 40"]) == {"p": 4.7, "omega": 40.0}
+    for bad in (["p"], ["=3"], ["p=abc"], ["p=nan"]):
+        with pytest.raises(ValueError, match="--param"):
+            _parse_params(bad)
+    parser = argparse.ArgumentParser()
+    add_fit_subcommand(parser.add_subparsers())
+    import importlib.resources
+    path = str(importlib.resources.files("fastrock") / "data" / "yu2019_halfcycles.csv")
+    args = parser.parse_args(["fit", path, "--alpha-deg", "14.8", "--param", "p=x"])
+    assert args.func(args) == 2
+    assert "--param p" in capsys.readouterr().err
