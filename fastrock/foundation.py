@@ -44,7 +44,7 @@ from . import excitation as X
 from .bodies import RigidBlock
 from .models import KernelSpec
 from .outcomes import EVENT_NAMES, outcome_of, status_of
-from .simulate import SimulationResult, _ground_at, metrics_dict
+from .simulate import SimulationResult, _ground_at, metrics_dict, run_inputs
 from .solver import DEFAULT_T_AFTER, make_solver
 from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import C_LOG_DROPPED, C_NHIST, C_NLOG, N_COUNTERS
@@ -398,21 +398,8 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical
     dtheta0 = V.finite("dtheta0", dtheta0)
     spec, blk = foundation_spec(body, foundation, mass)
     _check_release(body, theta0, allow_overturn)
-    t_exc = X.end_time(body, excitation, vertical)
-    if duration is None:
-        t_end = t_exc + V.non_negative("t_after", t_after)
-    else:
-        t_end = V.positive("duration", duration)
-    if t_end <= 0:
-        raise ValueError("the run has zero length: give duration or an excitation")
-    hdr, smp = X.to_header(body, excitation, vertical)
-    opt = solver.options(t_end, False)
-    if t_eval is None:
-        te = np.empty(0)
-        cap = history_capacity or 20000
-    else:
-        te = np.sort(V.finite_array("t_eval", t_eval))
-        cap = te.size + 2
+    hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
+                                        history_capacity, solver, False)
     y0 = foundation.initial_state(blk, theta0, dtheta0)
     code, t, Y, D, lg, met, cnt = _integrate(spec, y0, hdr, smp, opt, te, cap)
     ag, av = _ground_at(t, hdr, smp)

@@ -1,7 +1,6 @@
 """Single runs: time history, events and outcome."""
 from __future__ import annotations
 
-import math
 import warnings
 from dataclasses import dataclass, field
 
@@ -158,21 +157,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         raise ValueError(f"theta0 must satisfy |theta0| < theta_over = {body.theta_over}, got {theta0}")
     if wall is not None:
         wall.check_initial(theta0, body)
-    t_exc = X.end_time(body, excitation, vertical)
-    if duration is None:
-        t_end = t_exc + V.non_negative("t_after", t_after)
-    else:
-        t_end = V.positive("duration", duration)
-    if t_end <= 0:
-        raise ValueError("the run has zero length: give duration or an excitation")
-    hdr, smp = X.to_header(body, excitation, vertical)
-    opt = solver.options(t_end, early_exit)
-    if t_eval is None:
-        te = np.empty(0)
-        cap = history_capacity or 20000
-    else:
-        te = np.sort(V.finite_array("t_eval", t_eval))
-        cap = te.size + 2
+    hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
+                                        history_capacity, solver, early_exit)
     y0 = np.zeros(spec.n_state)
     y0[spec.theta_index] = theta0
     y0[spec.theta_index + 1] = dtheta0
@@ -242,6 +228,26 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
                                                           ("friction", spec.name == "rigid_friction"),
                                                           ("wall", wall is not None),
                                                           ("vertical", vertical is not None)) if on))
+
+
+def run_inputs(body, excitation, vertical, duration, t_after, t_eval, history_capacity, solver,
+               early_exit):
+    """Kernel inputs of one run: excitation header and samples, solver options
+    (end time from ``duration`` or the excitation end + ``t_after``), output
+    times and the history capacity."""
+    t_exc = X.end_time(body, excitation, vertical)
+    if duration is None:
+        t_end = t_exc + V.non_negative("t_after", t_after)
+    else:
+        t_end = V.positive("duration", duration)
+    if t_end <= 0:
+        raise ValueError("the run has zero length: give duration or an excitation")
+    hdr, smp = X.to_header(body, excitation, vertical)
+    opt = solver.options(t_end, early_exit)
+    if t_eval is None:
+        return hdr, smp, opt, np.empty(0), history_capacity or 20000
+    te = np.sort(V.finite_array("t_eval", t_eval))
+    return hdr, smp, opt, te, te.size + 2
 
 
 def _ground_at(t, hdr, smp):
