@@ -124,6 +124,9 @@ class RigidBlock:
 IMPACT_MAPS = {"full-contact": 0, "pivot-switch": 1}
 
 
+DEFAULT_BASE_MASS_RATIO = 0.1
+
+
 @dataclass(frozen=True)
 class FlexibleBody:
     """Lumped mass on an elastic column on a rigid rocking base (physics.md 3).
@@ -151,6 +154,16 @@ class FlexibleBody:
         I_m / (m R0^2) (default 0: point mass).
     mass : float
         m [kg], only scales forces in the time history (default 1).
+    base_mass_ratio : float, optional
+        m_b / m, a rigid base block under the column (physics.md 3.1, 4.4),
+        with inertia I_b = m_b B^2 / 3 about its own centre of mass.  Default
+        (None): 0 (the classic massless base) without sliding, and
+        ``DEFAULT_BASE_MASS_RATIO`` = 0.1 with friction, where a base mass is
+        needed: with m_b = 0 the sliding problem is a differential-algebraic
+        system (ill-posed without column damping).  Pass the same value
+        explicitly to compare sliding and non-sliding runs of one body.
+    base_cm_height : float
+        h_b [m], height of the base's centre of mass (default 0).
     """
 
     alpha: float
@@ -163,6 +176,8 @@ class FlexibleBody:
     theta_over: float = math.pi / 2
     rotary_inertia_ratio: float = 0.0
     mass: float = 1.0
+    base_mass_ratio: float | None = None
+    base_cm_height: float = 0.0
     kind: str = field(default="flexible", init=False)
 
     def __post_init__(self):
@@ -180,12 +195,19 @@ class FlexibleBody:
         if self.e is None:
             object.__setattr__(self, "e", 1.0)
         V.in_closed("e", self.e, 0.0, 1.0)
+        if self.base_mass_ratio is not None:
+            V.non_negative("base_mass_ratio", self.base_mass_ratio)
+        V.non_negative("base_cm_height", self.base_cm_height)
+        if self.impact == "pivot-switch" and (self.base_mass_ratio or self.base_cm_height):
+            raise ValueError("impact='pivot-switch' is available for a massless base only "
+                             "(base_mass_ratio=0, base_cm_height=0)")
 
     @classmethod
     def from_dimensions(cls, m, K, c, B, H, I_m=0.0, impact="full-contact", e=None, g=G_STANDARD,
-                        theta_over=math.pi / 2):
+                        theta_over=math.pi / 2, m_b=None, h_b=0.0):
         """From mass m [kg], column stiffness K [N/m] and dashpot c [N s/m],
-        base half-width B [m], mass height H [m], rotary inertia I_m [kg m^2]."""
+        base half-width B [m], mass height H [m], rotary inertia I_m [kg m^2],
+        base mass m_b [kg] and its CM height h_b [m]."""
         m = V.positive("m", m)
         K = V.positive("K", K)
         c = V.non_negative("c", c)
@@ -197,7 +219,8 @@ class FlexibleBody:
         wn = math.sqrt(K / m)
         return cls(alpha=math.atan2(B, H), p=p, omega_n_over_p=wn / p, zeta=c / (2 * m * wn), e=e,
                    impact=impact, g=g, theta_over=theta_over, rotary_inertia_ratio=I_m / (m * R0 * R0),
-                   mass=m)
+                   mass=m, base_mass_ratio=None if m_b is None else V.non_negative("m_b", m_b) / m,
+                   base_cm_height=h_b)
 
     @property
     def R0(self):
@@ -215,9 +238,17 @@ class FlexibleBody:
     def omega_n(self):
         return self.omega_n_over_p * self.p
 
+    def base_mass(self, sliding=False):
+        """m_b / m in effect: ``base_mass_ratio``, or its default (0 without
+        sliding, DEFAULT_BASE_MASS_RATIO with it)."""
+        if self.base_mass_ratio is not None:
+            return self.base_mass_ratio
+        return DEFAULT_BASE_MASS_RATIO if sliding else 0.0
+
     @property
     def uplift_deformation(self):
-        """Static deflection at uplift u_y [m]: H K u = m g (B - u)."""
+        """Static deflection at uplift u_y [m] of the massless-base column:
+        H K u = m g (B - u)."""
         wn = self.omega_n
         return self.g * self.B / (wn * wn * self.H + self.g)
 

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from . import _validate as V
 
 DEFAULT_SLIDE_TOLERANCE = 1e-3   # m
+LIFT_OFF = {"stop": 0, "hold": 1}
 
 
 @dataclass(frozen=True)
@@ -17,11 +18,19 @@ class Friction:
     ``mu_s = inf`` means no sliding: the scene then runs the frictionless
     kernel and pays nothing for friction.  ``slide_tolerance`` [m]: a safe run
     whose residual slip exceeds it has outcome "slide" (default 1 mm).
+
+    ``lift_off`` (FlexibleBody only): what happens when the normal force N
+    reaches 0 while the body rocks.  "stop" (default): the run ends with
+    outcome "flight" (physics.md 4.6).  "hold": the pivot is held on the
+    ground, as the classic rocking models implicitly do (they never check
+    N), and the base slips without friction while N < 0; the time spent so
+    is reported as ``time_unloaded``.
     """
 
     mu_s: float
     mu_k: float | None = None
     slide_tolerance: float = DEFAULT_SLIDE_TOLERANCE
+    lift_off: str = "stop"
 
     def __post_init__(self):
         for name in ("mu_s", "mu_k", "slide_tolerance"):
@@ -40,6 +49,7 @@ class Friction:
         if self.mu_k > self.mu_s:
             raise ValueError(f"mu_k must be <= mu_s, got mu_k={self.mu_k}, mu_s={self.mu_s}")
         V.non_negative("slide_tolerance", self.slide_tolerance)
+        V.choice("lift_off", self.lift_off, LIFT_OFF)
 
     @property
     def sliding_possible(self):

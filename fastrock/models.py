@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .bodies import IMPACT_MAPS, FlexibleBody, RigidBlock
+from .friction import LIFT_OFF
 
 
 @dataclass(frozen=True)
@@ -21,6 +22,19 @@ class KernelSpec:
     par: np.ndarray
     state_names: tuple
     theta_index: int = 0
+
+    @property
+    def flexible(self):
+        return self.name.startswith("flexible")
+
+    @property
+    def friction(self):
+        return self.name.endswith("friction")
+
+    @property
+    def slide_index(self):
+        """Index of d in the state (friction kernels), else None."""
+        return self.state_names.index("d") if self.friction else None
 
     def load(self):
         return importlib.import_module(f"fastrock.kernels.{self.module}")
@@ -45,9 +59,9 @@ def rigid_par(body: RigidBlock):
     return par
 
 
-def flexible_par(body: FlexibleBody):
+def flexible_par(body: FlexibleBody, sliding=False, n_par=None):
     from fastrock.kernels import flexible as K
-    par = np.zeros(K.N_PAR)
+    par = np.zeros(n_par or K.N_PAR)
     par[K.F_ALPHA] = body.alpha
     par[K.F_P] = body.p
     par[K.F_E] = body.e
@@ -59,11 +73,33 @@ def flexible_par(body: FlexibleBody):
     par[K.F_ZETA] = body.zeta
     par[K.F_IM] = body.rotary_inertia_ratio * body.R0 ** 2
     par[K.F_IMPACT] = IMPACT_MAPS[body.impact]
+    mb = body.base_mass(sliding)
+    par[K.F_MB] = mb
+    par[K.F_IB] = mb * body.B ** 2 / 3.0
+    par[K.F_HB] = body.base_cm_height
+    return par
+
+
+def flexible_friction_par(body: FlexibleBody, friction):
+    from fastrock.kernels import flexible_friction as K
+    if body.impact != "full-contact":
+        raise ValueError("friction= with a FlexibleBody needs impact='full-contact' (the slide-rock impact "
+                         "rule of physics.md 4.4)")
+    if body.base_mass(sliding=True) <= 0.0:
+        raise ValueError("base_mass_ratio must be > 0 with sliding on: with a massless base the sliding "
+                         "problem is a differential-algebraic system (physics.md 4.4); use e.g. 0.1")
+    par = flexible_par(body, sliding=True, n_par=K.N_PAR)
+    par[K.Q_MU_S] = friction.mu_s
+    par[K.Q_MU_K] = friction.mu_k
+    par[K.Q_LIFT_OFF] = LIFT_OFF[friction.lift_off]
     return par
 
 
 def rigid_friction_par(body: RigidBlock, friction):
     from fastrock.kernels import friction as K
+    if friction.lift_off != "stop":
+        raise ValueError("lift_off='hold' is available for FlexibleBody only; a rigid block with friction "
+                         "stops with outcome 'flight' when N reaches 0")
     par = np.zeros(K.N_PAR)
     par[: len(rigid_par(body))] = rigid_par(body)
     if body.b is not None and body.h is not None:
@@ -90,11 +126,13 @@ def select(body, wall=None, friction=None):
         if not friction.sliding_possible:
             friction = None
     if friction is not None:
-        if not isinstance(body, RigidBlock):
-            raise ValueError("friction= is implemented for RigidBlock only so far (flexible bodies with "
-                             "sliding are not available yet)")
         if wall is not None:
             raise ValueError("friction= together with wall= is not available yet")
+        if isinstance(body, FlexibleBody):
+            return KernelSpec("flexible_friction", "flexible_friction", 6, flexible_friction_par(body, friction),
+                              ("u", "u_dot", "theta", "theta_dot", "d", "d_dot"), theta_index=2)
+        if not isinstance(body, RigidBlock):
+            raise ValueError(f"body must be a fastrock body (RigidBlock, ...), got {type(body).__name__}")
         return KernelSpec("rigid_friction", "friction", 4, rigid_friction_par(body, friction),
                           ("theta", "theta_dot", "d", "d_dot"))
     if isinstance(body, RigidBlock):

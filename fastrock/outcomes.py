@@ -21,6 +21,7 @@ STATUS = {
     L.FAIL_NONFINITE: "failed:non-finite",
     L.FAIL_TRANSITIONS: "failed:transition-loop",
     L.FAIL_OUTPUT_FULL: "failed:output-full",
+    L.FAIL_INCONSISTENT: "failed:inconsistent-contact",
     L.RUNNING: "failed:unfinished",
 }
 
@@ -33,7 +34,10 @@ STATUS_DESCRIPTION = {
     "overturn:mode1": "overturned after at least one impact",
     "overturn:mode2": "overturned without any impact",
     "leaning": "came to rest leaning on the wall",
-    "flight": "lost contact with the ground (vertical acceleration below -g)",
+    "flight": "lost contact with the ground (vertical acceleration below -g, or the normal force "
+              "reached 0 while rocking)",
+    "failed:inconsistent-contact": "friction: neither stick nor slip in either direction is consistent "
+                                   "(a Painleve-type paradox, seen at very large mu)",
 }
 
 

@@ -44,15 +44,20 @@ def metrics_dict(met, body):
     return d
 
 
-def friction_metrics(MET):
-    """Sliding metrics from rows of kernel metrics (arrays, m and s)."""
-    return {
+def friction_metrics(MET, flexible=False):
+    """Sliding metrics from rows of kernel metrics (arrays, m and s); a
+    flexible body adds the held lift-offs (Friction(lift_off="hold"))."""
+    d = {
         "max_slide": MET[:, L.M_MAX_SLIDE],
         "residual_slide": MET[:, L.M_RESIDUAL_SLIDE],
         "time_sliding": MET[:, L.M_T_SLIDE],
         "time_slide_rocking": MET[:, L.M_T_SLIDE_ROCK],
         "stick_slip": np.nan_to_num(MET[:, L.M_N_STICK_SLIP]),
     }
+    if flexible:
+        d["lift_offs"] = np.nan_to_num(MET[:, L.M_N_LIFT_OFF]).astype(int)
+        d["time_unloaded"] = MET[:, L.M_T_UNLOADED]
+    return d
 
 
 def flexible_metrics(MET, body):
@@ -186,7 +191,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         "contact": [MODE_NAMES.get(int(m), str(m)) for m in hist_d[:nh, 0]],
         "pivot": np.where(hist_d[:nh, 0] == L.MODE_REST, 0, hist_d[:nh, 1]),
     })
-    if spec.name == "flexible":
+    if spec.flexible:
         u, du = hist_y[:nh, 0], hist_y[:nh, 1]
         wn = body.omega_n
         history["u"] = u
@@ -195,9 +200,9 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         # elastic column force and the moment it makes at the base
         history["base_shear"] = body.mass * (wn * wn * u + 2 * body.zeta * wn * du)
         history["overturning_moment"] = history["base_shear"] * body.H
-    if spec.name == "rigid_friction":
-        history["d"] = hist_y[:nh, 2]
-        history["d_dot"] = hist_y[:nh, 3]
+    if spec.friction:
+        history["d"] = hist_y[:nh, spec.slide_index]
+        history["d_dot"] = hist_y[:nh, spec.slide_index + 1]
     nl = int(cnt[C_NLOG])
     lg = log[:nl]
     events = pd.DataFrame({
@@ -210,9 +215,11 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     })
     metrics = metrics_dict(met, body)
     outcome = outcome_of(code)
-    if spec.name == "rigid_friction":
-        metrics.update({k: float(v[0]) for k, v in friction_metrics(met[None, :]).items()})
+    if spec.friction:
+        metrics.update({k: float(v[0]) for k, v in friction_metrics(met[None, :], spec.flexible).items()})
         metrics["stick_slip"] = int(metrics["stick_slip"])
+        if "lift_offs" in metrics:
+            metrics["lift_offs"] = int(metrics["lift_offs"])
         if outcome == "safe" and abs(metrics["residual_slide"]) > friction.slide_tolerance:
             outcome = "slide"
     if metrics.get("energy_gains", 0) > 0:
@@ -224,8 +231,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
                             status=status_of(code), status_code=code,
                             metrics=metrics, kernel=spec.name, body=body,
                             excitation=excitation,
-                            effects=tuple(e for e, on in (("flexible", spec.name == "flexible"),
-                                                          ("friction", spec.name == "rigid_friction"),
+                            effects=tuple(e for e, on in (("flexible", spec.flexible),
+                                                          ("friction", spec.friction),
                                                           ("wall", wall is not None),
                                                           ("vertical", vertical is not None)) if on))
 

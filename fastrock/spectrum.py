@@ -119,7 +119,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         "amplitude_ratio": A, "frequency_ratio": F, "sign": S.astype(int),
         "amplitude": amp, "amplitude_g": amp / body.g, "frequency_hz": omega / (2 * np.pi),
     })
-    df = _add_results(df, status, MET, body, wall, friction if spec.name == "rigid_friction" else None)
+    df = _add_results(df, status, MET, body, wall, friction if spec.friction else None)
     df["theta_end"] = YF[:, spec.theta_index]
     df["theta_dot_end"] = YF[:, spec.theta_index + 1]
     df = df.iloc[:done].reset_index(drop=True)
@@ -132,7 +132,7 @@ def _add_results(df, status, MET, body, wall=None, friction=None):
     df["outcome"] = [outcome_of(c) for c in status]
     if friction is not None:
         from .simulate import friction_metrics
-        for k, v in friction_metrics(MET).items():
+        for k, v in friction_metrics(MET, getattr(body, "kind", "") == "flexible").items():
             df[k] = v
         slid = (df["outcome"] == "safe") & (df["residual_slide"].abs() > friction.slide_tolerance)
         df.loc[slid, "outcome"] = "slide"

@@ -4,7 +4,9 @@ base (physics.md section 3; Acikgoz & DeJong 2012, Vassiliou et al. 2014/17).
 State ``y = (u, u', theta, theta')`` [m, m/s, rad, rad/s]: u is the elastic
 deflection of the mass perpendicular to the column.  Everything is per unit
 mass m (I_m/m = ``i_m``).  Discrete state: full contact (theta = 0, u
-oscillates) or rocking about pivot s, with the exact equations of 3.4.
+oscillates) or rocking about pivot s, with the exact equations of 3.4,
+including an optional rigid base (mass m_b, inertia I_b, CM height h_b; the
+classic model has m_b = 0).
 
 Events in full contact: 0 uplift (signed test of 3.3, either corner),
 1/2 extrema of u (observers), 3 flight.  While rocking: 0 impact s*theta,
@@ -38,7 +40,10 @@ F_WN = 7         # rad/s, omega_n = sqrt(K/m)
 F_ZETA = 8
 F_IM = 9         # m^2, I_m / m
 F_IMPACT = 10    # 0: full contact after impact (I3), 1: pivot switch (I1)
-N_PAR = 12
+F_MB = 11        # m_b / m, rigid base mass (0: the classic massless base)
+F_IB = 12        # m^2, I_b / m, base inertia about its own CM
+F_HB = 13        # m, base CM height h_b
+N_PAR = 14
 
 IMPACT_FULL_CONTACT = 0
 IMPACT_PIVOT_SWITCH = 1
@@ -62,13 +67,33 @@ def accelerations(t, y, s, rocking, par, hdr, smp):
     r = u - s * par[F_B]
     c = math.cos(th)
     sn = math.sin(th)
-    X = r * c + H * sn
-    Y = -r * sn + H * c
+    X, Y, Xb, Yb = positions(r, c, sn, s, par)
+    mb = par[F_MB]
     fu = fe + r * dth * dth + G * sn - ag * c
-    ft = G * X - ag * Y - 2.0 * r * dth * du
-    det = r * r + par[F_IM]
-    m22 = r * r + H * H + par[F_IM]
+    ft = G * (X + mb * Xb) - ag * (Y + mb * Yb) - 2.0 * r * dth * du
+    det = r * r + base_inertia(par)
+    m22 = det + H * H
     return (m22 * fu - H * ft) / det, (ft - H * fu) / det
+
+
+@jit
+def positions(r, c, sn, s, par):
+    """Mass (X, Y) and base CM (X_b, Y_b) relative to the pivot s
+    (physics.md 3.1), r = u - s B."""
+    H = par[F_H]
+    hb = par[F_HB]
+    sB = s * par[F_B]
+    return (r * c + H * sn, -r * sn + H * c, -sB * c + hb * sn,
+            sB * sn + hb * c)
+
+
+@jit
+def base_inertia(par):
+    """I_m + I_b + m_b (B^2 + h_b^2) per unit mass: the theta-row inertia
+    beyond the point mass (physics.md 3.4)."""
+    B = par[F_B]
+    hb = par[F_HB]
+    return par[F_IM] + par[F_IB] + par[F_MB] * (B * B + hb * hb)
 
 
 @jit
@@ -83,8 +108,9 @@ def rhs(t, y, par, disc, hdr, smp, out):
 
 @jit
 def uplift_margin(t, y, s, par, hdr, smp):
-    """G (B - s u) - s H (w^2 u + 2 zeta w u') (physics.md 3.3, per unit
-    mass) and its time derivative; uplift about s when it reaches 0."""
+    """G (B - s u) + m_b/m (G B + s a_g h_b) - s H (w^2 u + 2 zeta w u')
+    (physics.md 3.3, per unit mass) and its time derivative; uplift about
+    s when it reaches 0."""
     ag, dag, av, dav = ground_rates(t, hdr, smp)
     G = par[F_G] + av
     wn = par[F_WN]
@@ -94,9 +120,13 @@ def uplift_margin(t, y, s, par, hdr, smp):
     u = y[0]
     du = y[1]
     udd = -wn * wn * u - 2.0 * z * wn * du - ag
-    g = G * (B - s * u) - s * H * (wn * wn * u + 2.0 * z * wn * du)
+    mb = par[F_MB]
+    hb = par[F_HB]
+    g = G * (B - s * u) - s * H * (wn * wn * u + 2.0 * z * wn * du) + \
+        mb * (G * B + s * ag * hb)
     gd = dav * (B - s * u) - G * s * du - s * H * (wn * wn * du +
-                                                   2.0 * z * wn * udd)
+                                                   2.0 * z * wn * udd) + \
+        mb * (dav * B + s * dag * hb)
     return g, gd
 
 
@@ -170,7 +200,7 @@ def kinetic(y, s, rocking, par):
     du = y[1]
     dth = y[3]
     return 0.5 * (du * du + 2.0 * H * du * dth
-                  + (r * r + H * H + par[F_IM]) * dth * dth)
+                  + (r * r + H * H + base_inertia(par)) * dth * dth)
 
 
 @jit
@@ -270,7 +300,7 @@ def never_uplifts_again(t, y, par, hdr):
     U = math.sqrt(2.0 * E) / wn
     V = math.sqrt(2.0 * E)
     return par[F_H] * (wn * wn * U + 2.0 * par[F_ZETA] * wn * V) < \
-        par[F_G] * (par[F_B] - U)
+        par[F_G] * (par[F_B] * (1.0 + par[F_MB]) - U)
 
 
 @jit

@@ -21,6 +21,7 @@ FAIL_EVENT = -3         # event location failed (iteration cap)
 FAIL_NONFINITE = -4     # NaN/inf in the state
 FAIL_TRANSITIONS = -5   # too many discrete transitions without time advance
 FAIL_OUTPUT_FULL = -6   # time-history buffer full (front end retries larger)
+FAIL_INCONSISTENT = -7  # no contact mode is consistent (Painleve-type, friction)
 
 # ---- discrete state vector (int64) -----------------------------------------
 D_MODE = 0         # contact mode, model specific (MODE_* below)
@@ -67,6 +68,9 @@ M_N_EVENTS = 22
 M_T_EXC_END = 23
 M_T_PREV = 24         # s, time of the last bookkeeping (internal)
 M_MIN_U = 25          # m, most negative deflection (internal)
+M_T_UNLOADED = 26     # s spent with the pivot in tension (lift-off held)
+M_N_LIFT_OFF = 27     # times N reached 0 while rocking (lift-off held)
+M_T_SLIP_START = 28   # s, last slip start from stick (internal)
 N_MET = 32
 
 # ---- solver options vector (float64) ---------------------------------------

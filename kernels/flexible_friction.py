@@ -1,0 +1,614 @@
+"""Flexible rocking body with Coulomb friction at the base: rest, slide, rock
+and slide-rock (physics.md 3 and 4.4; Farooghi-Mehr & Wittich).
+
+State ``y = (u, u', theta, theta', d, d')``: the column deflection u [m],
+the rotation theta [rad] and the slip d [m] of the base relative to the
+ground.  Per unit mass m, with the rigid base (m_b/m = ``mb`` > 0, I_b, h_b)
+of the flexible kernel's parameter vector, pivot s and
+Xc = X + mb X_b, Yc = Y + mb Y_b (physics.md 3.1):
+
+    [ 1      H      c     ] [u'']   [ f_u ]
+    [ H      m22    Yc    ] [th''] = [ f_th ]
+    [ c      Yc     1+mb  ] [d'']   [ F - (1+mb) a_g + Xc th'^2 + 2 sn th' u' ]
+
+    N = (1+mb) G - sn u'' - 2 c th' u' - Xc th'' - Yc th'^2
+
+Stick: d'' = 0 and F follows from the last row; slip toward sigma:
+F = -mu_k sigma N, which makes the system a 3x3 solve (N eliminated).  Full
+contact is theta = 0 with the same rows.  No regularised friction law:
+every transition is an event.  Impacts (theta -> 0) follow Farooghi-Mehr &
+Wittich's full-contact rule in its general form: theta'+ = 0,
+u'+ = u'- + H theta'-, d'+ = d'- + h_b theta'- (the frictionless plastic
+projection; h_b = 0 by default, so the slip velocity is kept).
+
+Events (g > 0 admissible):
+  REST        0 uplift (either corner), 1 slip onset mu_s N - |F|,
+              2/3 extrema of u (observers), 4 flight G
+  SLIDE       0 uplift while slipping (-s theta''), 1 stick sigma d',
+              2/3 extrema of u, 4 flight G
+  ROCK        0 impact s theta, 1 overturn, 2 slip onset, 3 lift-off N,
+              4 peak s theta' (obs.), 5 pass alpha (obs.), 6/7 extrema of u
+  SLIDE_ROCK  as ROCK with 2 stick sigma d'
+"""
+import math
+
+import numpy as np
+
+from .config import jit, jit_parallel
+from .excitation import excitation_end, ground, ground_rates
+from .flexible import (F_ALPHA, F_B, F_G, F_H, F_HB, F_MB, F_THETA_OVER, F_WN,
+                       F_ZETA, base_inertia, positions, track_u,
+                       uplift_margin)
+from .friction import track_slide
+from .hybrid import integrate_hybrid, log_event, sweep_rows
+from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
+                     EV_CONTACT, FAIL_INCONSISTENT, M_N_LIFT_OFF,
+                     M_T_SLIP_START, M_T_UNLOADED,
+                     EV_IMPACT, EV_OVERTURN, EV_PASS_ALPHA, EV_SLIP,
+                     EV_STICK, EV_UPLIFT, FLIGHT, M_IMPACTS, M_N_STICK_SLIP,
+                     M_T_CONTACT, M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA,
+                     M_T_PREV, M_T_ROCK, M_T_SLIDE, M_T_SLIDE_ROCK,
+                     M_T_UPLIFT, MODE_REST, MODE_ROCK, MODE_SLIDE,
+                     MODE_SLIDE_ROCK, N_DISC, N_MET, O_EARLY_EXIT, O_T0,
+                     OVERTURN_MODE1, OVERTURN_MODE2, RUNNING, SAFE_MOVING,
+                     SAFE_NO_UPLIFT, SAFE_REST)
+from .rigid import UPLIFT_RTOL, track_rotation
+
+Q_MU_S = 14
+Q_MU_K = 15
+Q_LIFT_OFF = 16     # 0: stop with FLIGHT when N reaches 0 while rocking,
+                    # 1: hold the pivot down (bilateral, as the classic
+                    #    models do) with no friction while N < 0
+N_PAR = 18
+LIFT_OFF_STOP = 0
+LIFT_OFF_HOLD = 1
+N_EVENTS = 8
+SLIP_ATOL = 1e-9     # consistent slip start: sigma d'' > -SLIP_ATOL g
+N_LIFT = 1e-6        # N below N_LIFT times the weight at slip onset: lift-off
+N_RELOAD = 2e-6      # a held lift-off ends when N exceeds N_RELOAD times it
+
+
+@jit
+def elastic(y, par):
+    """Column force per unit mass, -(w^2 u + 2 zeta w u')."""
+    wn = par[F_WN]
+    return -wn * wn * y[0] - 2.0 * par[F_ZETA] * wn * y[1]
+
+
+@jit
+def rows(t, y, s, par, hdr, smp):
+    """Terms shared by the stick and slip solves at pivot s."""
+    ag, av = ground(t, hdr, smp)
+    G = par[F_G] + av
+    u = y[0]
+    du = y[1]
+    dth = y[3]
+    H = par[F_H]
+    mb = par[F_MB]
+    r = u - s * par[F_B]
+    c = math.cos(y[2])
+    sn = math.sin(y[2])
+    X, Y, Xb, Yb = positions(r, c, sn, s, par)
+    Xc = X + mb * Xb
+    Yc = Y + mb * Yb
+    fu = elastic(y, par) + r * dth * dth + G * sn - ag * c
+    ft = G * Xc - ag * Yc - 2.0 * r * dth * du
+    m22 = r * r + base_inertia(par) + H * H
+    # N without the acceleration terms
+    n0 = (1.0 + mb) * G - 2.0 * c * dth * du - Yc * dth * dth
+    # d row without F and the acceleration terms
+    fd = -(1.0 + mb) * ag + Xc * dth * dth + 2.0 * sn * dth * du
+    return ag, G, c, sn, Xc, Yc, fu, ft, m22, n0, fd
+
+
+@jit
+def stick_rock(t, y, s, par, hdr, smp):
+    """(u'', theta'', F, N) per unit mass, rocking on s without slip."""
+    ag, G, c, sn, Xc, Yc, fu, ft, m22, n0, fd = rows(t, y, s, par, hdr, smp)
+    H = par[F_H]
+    det = m22 - H * H
+    udd = (m22 * fu - H * ft) / det
+    tdd = (ft - H * fu) / det
+    F = c * udd + Yc * tdd - fd
+    N = n0 - sn * udd - Xc * tdd
+    return udd, tdd, F, N
+
+
+@jit
+def slip_rock(t, y, s, sigma, par, hdr, smp):
+    """(u'', theta'', d'', N) per unit mass, rocking on s and slipping
+    toward sigma with F = -mu_k sigma N (Cramer's rule on the 3x3)."""
+    ag, G, c, sn, Xc, Yc, fu, ft, m22, n0, fd = rows(t, y, s, par, hdr, smp)
+    H = par[F_H]
+    k = par[Q_MU_K] * sigma
+    a31 = c - k * sn
+    a32 = Yc - k * Xc
+    a33 = 1.0 + par[F_MB]
+    b3 = fd - k * n0
+    c1 = m22 * a33 - Yc * a32
+    c3 = H * a32 - m22 * a31
+    det = c1 - H * (H * a33 - Yc * a31) + c * c3
+    udd = (fu * c1 - H * (ft * a33 - Yc * b3) + c * (ft * a32 - m22 * b3)) / det
+    tdd = (fu * (Yc * a31 - H * a33) + ft * (a33 - c * a31)
+           + b3 * (H * c - Yc)) / det
+    dd = (fu * c3 + ft * (H * a31 - a32) + b3 * (m22 - H * H)) / det
+    N = n0 - sn * udd - Xc * tdd
+    return udd, tdd, dd, N
+
+
+@jit
+def contact_stick(t, y, par, hdr, smp):
+    """(u'', F, N) per unit mass in full contact without slip."""
+    ag, av = ground(t, hdr, smp)
+    mb = par[F_MB]
+    fe = elastic(y, par)
+    return fe - ag, fe + mb * ag, (1.0 + mb) * (par[F_G] + av)
+
+
+@jit
+def contact_slip(t, y, sigma, par, hdr, smp):
+    """(u'', d'', N) per unit mass in full contact, slipping toward sigma."""
+    ag, av = ground(t, hdr, smp)
+    mb = par[F_MB]
+    fe = elastic(y, par)
+    N = (1.0 + mb) * (par[F_G] + av)
+    dd = (-par[Q_MU_K] * sigma * N - fe) / mb - ag
+    return fe - ag - dd, dd, N
+
+
+@jit
+def rhs(t, y, par, disc, hdr, smp, out):
+    mode = disc[D_MODE]
+    s = disc[D_PIVOT]
+    sig = disc[D_SLIP_DIR]
+    if mode == MODE_ROCK:
+        udd, tdd, _F, _N = stick_rock(t, y, s, par, hdr, smp)
+        dd = 0.0
+    elif mode == MODE_SLIDE_ROCK:
+        udd, tdd, dd, _N = slip_rock(t, y, s, sig, par, hdr, smp)
+    elif mode == MODE_SLIDE:
+        udd, dd, _N = contact_slip(t, y, sig, par, hdr, smp)
+        tdd = 0.0
+    else:
+        udd, _F, _N = contact_stick(t, y, par, hdr, smp)
+        tdd = 0.0
+        dd = 0.0
+    out[0] = y[1]
+    out[1] = udd
+    out[2] = y[3]
+    out[3] = tdd
+    out[4] = y[5]
+    out[5] = dd
+
+
+@jit
+def slide_uplift_margin(t, y, sigma, par, hdr, smp):
+    """min over s of -s theta'' of slip-rocking from full contact: the body
+    lifts off a corner while slipping when it reaches 0."""
+    _u, tp, _d, _N = slip_rock(t, y, 1, sigma, par, hdr, smp)
+    _u, tm, _d, _N = slip_rock(t, y, -1, sigma, par, hdr, smp)
+    return min(-tp, tm)
+
+
+@jit
+def event(k, t, y, par, disc, hdr, smp):
+    mode = disc[D_MODE]
+    s = disc[D_PIVOT]
+    sig = disc[D_SLIP_DIR]
+    if mode == MODE_REST or mode == MODE_SLIDE:
+        if k == 4:
+            _ag, _dag, av, dav = ground_rates(t, hdr, smp)
+            return par[F_G] + av, dav, True
+        if k == 2 or k == 3:
+            sg = 1.0 if k == 2 else -1.0
+            if mode == MODE_REST:
+                udd, _F, _N = contact_stick(t, y, par, hdr, smp)
+            else:
+                udd, _dd, _N = contact_slip(t, y, sig, par, hdr, smp)
+            return sg * y[1], sg * udd, False
+        if mode == MODE_REST:
+            if k == 0:
+                gp, gdp = uplift_margin(t, y, 1, par, hdr, smp)
+                gm, gdm = uplift_margin(t, y, -1, par, hdr, smp)
+                if gp <= gm:
+                    return gp, gdp, True
+                return gm, gdm, True
+            if k == 1:
+                ag, dag, av, dav = ground_rates(t, hdr, smp)
+                mb = par[F_MB]
+                wn = par[F_WN]
+                fe = elastic(y, par)
+                F = fe + mb * ag
+                udd = fe - ag
+                dF = -wn * wn * y[1] - 2.0 * par[F_ZETA] * wn * udd + mb * dag
+                g = par[Q_MU_S] * (1.0 + mb) * (par[F_G] + av) - abs(F)
+                gd = par[Q_MU_S] * (1.0 + mb) * dav - (dF if F >= 0.0 else -dF)
+                return g, gd, True
+            return np.inf, 0.0, False
+        if k == 0:
+            return slide_uplift_margin(t, y, sig, par, hdr, smp), 0.0, True
+        if k == 1:
+            _udd, dd, _N = contact_slip(t, y, sig, par, hdr, smp)
+            return sig * y[5], sig * dd, True
+        return np.inf, 0.0, False
+    if k == 0:
+        return s * y[2], s * y[3], True
+    if k == 1:
+        return par[F_THETA_OVER] - s * y[2], -s * y[3], True
+    if k == 5:
+        return par[F_ALPHA] - s * y[2], -s * y[3], False
+    if mode == MODE_ROCK:
+        udd, tdd, F, N = stick_rock(t, y, s, par, hdr, smp)
+        if k == 2:
+            # no rate: F and N depend on a_g and the accelerations
+            return par[Q_MU_S] * N - abs(F), 0.0, True
+    else:
+        udd, tdd, dd, N = slip_rock(t, y, s, sig, par, hdr, smp)
+        if k == 2:
+            if sig == 0:
+                return np.inf, 0.0, True
+            return sig * y[5], sig * dd, True
+        if k == 3 and sig == 0:
+            # unloaded: contact returns; the band between N_LIFT and
+            # N_RELOAD keeps lift-off and reload from ping-ponging
+            return N_RELOAD * (1.0 + par[F_MB]) * par[F_G] - N, 0.0, True
+    if k == 3:
+        return N, 0.0, True
+    if k == 4:
+        return s * y[3], s * tdd, False
+    sg = 1.0 if k == 6 else -1.0
+    return sg * y[1], sg * udd, False
+
+
+@jit
+def static_margin(t, y, par, disc, hdr, smp):
+    return 1.0   # no static phase: the column vibrates in full contact
+
+
+@jit
+def book_time(t, disc, met):
+    dt = t - met[M_T_PREV]
+    if dt > 0.0:
+        m = disc[D_MODE]
+        if m == MODE_SLIDE:
+            met[M_T_SLIDE] += dt
+        elif m == MODE_SLIDE_ROCK:
+            met[M_T_SLIDE_ROCK] += dt
+            if disc[D_SLIP_DIR] == 0:
+                met[M_T_UNLOADED] += dt
+        elif m == MODE_ROCK:
+            met[M_T_ROCK] += dt
+        else:
+            met[M_T_CONTACT] += dt
+    met[M_T_PREV] = t
+
+
+@jit
+def set_mode(disc, mode, s, sigma):
+    disc[D_MODE] = mode
+    disc[D_STATIC] = 0
+    disc[D_PIVOT] = s
+    disc[D_SLIP_DIR] = sigma
+
+
+@jit
+def lift(t, y, s, met, log, cnt):
+    if np.isnan(met[M_T_UPLIFT]):
+        met[M_T_UPLIFT] = t
+    log_event(log, cnt, t, EV_UPLIFT, y[1], y[1], 0.0, s)
+
+
+@jit
+def lift_off(t, y, s, par, disc, met, log, cnt):
+    """N reached 0 while rocking: stop (FLIGHT) or hold the pivot down and
+    let the base slip without friction until N > 0 again (sigma = 0)."""
+    log_event(log, cnt, t, EV_FLIGHT, y[3], y[3], y[2], s)
+    if par[Q_LIFT_OFF] != LIFT_OFF_HOLD:
+        return FLIGHT
+    met[M_N_LIFT_OFF] += 1
+    set_mode(disc, MODE_SLIDE_ROCK, s, 0)
+    return RUNNING
+
+
+@jit
+def start_slip_rock(t, y, s, F, par, disc, hdr, smp, met, log, cnt,
+                    may_lift=True):
+    """Stick on pivot s is no longer admissible (friction F required):
+    slip-rock in the direction whose solve is consistent, N > 0 and
+    sigma d'' > 0 (physics.md 4.2), trying sigma = -sgn(F) first.  With
+    mu_k = mu_s, d'' is zero at slip onset up to round-off, hence the
+    tolerance.  Friction saturating because N vanishes is lift-off."""
+    _u, _t, _F, N = stick_rock(t, y, s, par, hdr, smp)
+    if may_lift and N < N_LIFT * (1.0 + par[F_MB]) * par[F_G]:
+        return lift_off(t, y, s, par, disc, met, log, cnt)
+    sigma = -1 if F > 0.0 else 1
+    tol = SLIP_ATOL * par[F_G]
+    for _ in range(2):
+        _u, _t, dd, N = slip_rock(t, y, s, sigma, par, hdr, smp)
+        if N > 0.0 and sigma * dd > -tol:
+            met[M_T_SLIP_START] = t
+            set_mode(disc, MODE_SLIDE_ROCK, s, sigma)
+            log_event(log, cnt, t, EV_SLIP, y[3], y[3], y[2], sigma)
+            return RUNNING
+        sigma = -sigma
+    return FAIL_INCONSISTENT
+
+
+@jit
+def slip_or_slide_rock(t, y, s, sigma, par, disc, hdr, smp, met, log, cnt):
+    """Start slipping toward sigma from full contact: slide-rock on s if
+    the slip-rock solve lifts that corner, else plain sliding."""
+    met[M_N_STICK_SLIP] += 1
+    log_event(log, cnt, t, EV_SLIP, y[5], y[5], 0.0, sigma)
+    if s != 0:
+        _u, tdd, _d, N = slip_rock(t, y, s, sigma, par, hdr, smp)
+        if s * tdd > 0.0 and N > 0.0:
+            set_mode(disc, MODE_SLIDE_ROCK, s, sigma)
+            lift(t, y, s, met, log, cnt)
+            return RUNNING
+    set_mode(disc, MODE_SLIDE, 1, sigma)
+    return RUNNING
+
+
+@jit
+def start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt):
+    """theta = theta' = 0 (rest, stick or just after an impact): choose REST,
+    SLIDE, ROCK or SLIDE_ROCK by the initiation criteria (physics.md 3.3,
+    4.2 and 4.4)."""
+    ag, av = ground(t, hdr, smp)
+    G = par[F_G] + av
+    if G <= 0.0:
+        log_event(log, cnt, t, EV_FLIGHT, 0.0, 0.0, 0.0, 0)
+        return FLIGHT
+    y[2] = 0.0
+    y[3] = 0.0
+    mu_s = par[Q_MU_S]
+    if y[5] != 0.0:
+        sigma = 1 if y[5] > 0.0 else -1
+        _u, tp, _d, Np = slip_rock(t, y, 1, sigma, par, hdr, smp)
+        _u, tm, _d, Nm = slip_rock(t, y, -1, sigma, par, hdr, smp)
+        if tp > 0.0 and tp >= -tm and Np > 0.0:
+            set_mode(disc, MODE_SLIDE_ROCK, 1, sigma)
+            lift(t, y, 1, met, log, cnt)
+        elif tm < 0.0 and Nm > 0.0:
+            set_mode(disc, MODE_SLIDE_ROCK, -1, sigma)
+            lift(t, y, -1, met, log, cnt)
+        else:
+            set_mode(disc, MODE_SLIDE, 1, sigma)
+        return RUNNING
+    gp, _ = uplift_margin(t, y, 1, par, hdr, smp)
+    gm, _ = uplift_margin(t, y, -1, par, hdr, smp)
+    if min(gp, gm) <= 0.0:
+        return uplift_from_rest(t, y, 1 if gp <= gm else -1, par, disc, hdr,
+                                smp, met, log, cnt)
+    _udd, F, N = contact_stick(t, y, par, hdr, smp)
+    if abs(F) > mu_s * N * (1.0 + UPLIFT_RTOL):
+        return slip_or_slide_rock(t, y, 0, -1 if F > 0.0 else 1, par, disc,
+                                  hdr, smp, met, log, cnt)
+    set_mode(disc, MODE_REST, 1, 0)
+    return RUNNING
+
+
+@jit
+def uplift_from_rest(t, y, s, par, disc, hdr, smp, met, log, cnt):
+    """The uplift test of 3.3 is met on corner s: rock if stick holds,
+    else slip (and slide-rock if that lifts the corner)."""
+    _u, _t, F, N = stick_rock(t, y, s, par, hdr, smp)
+    if abs(F) <= par[Q_MU_S] * N:
+        set_mode(disc, MODE_ROCK, s, 0)
+        lift(t, y, s, met, log, cnt)
+        return RUNNING
+    return slip_or_slide_rock(t, y, s, -1 if F > 0.0 else 1, par, disc, hdr,
+                              smp, met, log, cnt)
+
+
+@jit
+def stick(t, y, par, disc, hdr, smp, met, log, cnt):
+    """Slip velocity reached zero: stick if admissible, else reverse
+    (physics.md 4.5)."""
+    y[5] = 0.0
+    met[M_N_STICK_SLIP] += 1
+    s = disc[D_PIVOT]
+    if disc[D_MODE] == MODE_SLIDE:
+        log_event(log, cnt, t, EV_STICK, 0.0, 0.0, 0.0, 0)
+        return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+    _u, _t, F, N = stick_rock(t, y, s, par, hdr, smp)
+    log_event(log, cnt, t, EV_STICK, y[3], y[3], y[2], s)
+    if abs(F) <= par[Q_MU_S] * N:
+        set_mode(disc, MODE_ROCK, s, 0)
+        return RUNNING
+    if t == met[M_T_SLIP_START]:
+        # the slip just started cannot develop and stick cannot hold
+        return FAIL_INCONSISTENT
+    return start_slip_rock(t, y, s, F, par, disc, hdr, smp, met, log, cnt)
+
+
+@jit
+def reload(t, y, par, disc, hdr, smp, met, log, cnt):
+    """N back to 0+ after a held lift-off: slip on if the base moves, else
+    stick if admissible."""
+    s = disc[D_PIVOT]
+    log_event(log, cnt, t, EV_CONTACT, y[3], y[3], y[2], s)
+    if y[5] != 0.0:
+        set_mode(disc, MODE_SLIDE_ROCK, s, 1 if y[5] > 0.0 else -1)
+        return RUNNING
+    _u, _t, F, N = stick_rock(t, y, s, par, hdr, smp)
+    if abs(F) <= par[Q_MU_S] * N:
+        set_mode(disc, MODE_ROCK, s, 0)
+        return RUNNING
+    # the unloaded slip solve has N > 0 here: no second lift-off at once
+    return start_slip_rock(t, y, s, F, par, disc, hdr, smp, met, log, cnt,
+                           False)
+
+
+@jit
+def impact(t, y, par, disc, hdr, smp, met, log, cnt):
+    """theta -> 0: full contact, theta'+ = 0, u'+ = u'- + H theta'-,
+    d'+ = d'- + h_b theta'- (physics.md 4.4), then the initiation test."""
+    s = disc[D_PIVOT]
+    pre = y[3]
+    met[M_IMPACTS] += 1
+    met[M_T_LAST_IMPACT] = t
+    y[1] = y[1] + par[F_H] * pre
+    y[5] = y[5] + par[F_HB] * pre
+    y[2] = 0.0
+    y[3] = 0.0
+    log_event(log, cnt, t, EV_IMPACT, pre, 0.0, 0.0, -s)
+    return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+
+
+@jit
+def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    mode = disc[D_MODE]
+    s = disc[D_PIVOT]
+    rocking = mode == MODE_ROCK or mode == MODE_SLIDE_ROCK
+    if not rocking:
+        if k == 2 or k == 3:
+            track_u(y[0], met)
+            return RUNNING
+        book_time(t, disc, met)
+        track_slide(y[4], met)
+        if k == 4:
+            log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], 0.0, 0)
+            return FLIGHT
+        if mode == MODE_SLIDE:
+            if k == 1:
+                return stick(t, y, par, disc, hdr, smp, met, log, cnt)
+            # the slip-rock solve lifts a corner: follow it (the event,
+            # not a re-test at the root, decides)
+            sig = disc[D_SLIP_DIR]
+            _u, tp, _d, _N = slip_rock(t, y, 1, sig, par, hdr, smp)
+            _u, tm, _d, _N = slip_rock(t, y, -1, sig, par, hdr, smp)
+            sp = 1 if tp >= -tm else -1
+            set_mode(disc, MODE_SLIDE_ROCK, sp, sig)
+            lift(t, y, sp, met, log, cnt)
+            return RUNNING
+        if k == 0:
+            gp, _ = uplift_margin(t, y, 1, par, hdr, smp)
+            gm, _ = uplift_margin(t, y, -1, par, hdr, smp)
+            return uplift_from_rest(t, y, 1 if gp <= gm else -1, par, disc,
+                                    hdr, smp, met, log, cnt)
+        _udd, F, _N = contact_stick(t, y, par, hdr, smp)
+        return slip_or_slide_rock(t, y, 0, -1 if F > 0.0 else 1, par, disc,
+                                  hdr, smp, met, log, cnt)
+    if k == 4:
+        track_rotation(y[2], met)
+        return RUNNING
+    if k == 5:
+        if np.isnan(met[M_T_PASS_ALPHA]):
+            met[M_T_PASS_ALPHA] = t
+            log_event(log, cnt, t, EV_PASS_ALPHA, y[3], y[3], y[2], s)
+        return RUNNING
+    if k == 6 or k == 7:
+        track_u(y[0], met)
+        return RUNNING
+    book_time(t, disc, met)
+    track_slide(y[4], met)
+    if k == 3:
+        if disc[D_SLIP_DIR] == 0 and mode == MODE_SLIDE_ROCK:
+            return reload(t, y, par, disc, hdr, smp, met, log, cnt)
+        return lift_off(t, y, s, par, disc, met, log, cnt)
+    if k == 2:
+        if mode == MODE_ROCK:
+            _u, _t, F, _N = stick_rock(t, y, s, par, hdr, smp)
+            met[M_N_STICK_SLIP] += 1
+            return start_slip_rock(t, y, s, F, par, disc, hdr, smp, met,
+                                   log, cnt)
+        return stick(t, y, par, disc, hdr, smp, met, log, cnt)
+    if k == 1:
+        met[M_T_OVER] = t
+        track_rotation(y[2], met)
+        log_event(log, cnt, t, EV_OVERTURN, y[3], y[3], y[2], s)
+        if met[M_IMPACTS] > 0:
+            return OVERTURN_MODE1
+        return OVERTURN_MODE2
+    return impact(t, y, par, disc, hdr, smp, met, log, cnt)
+
+
+@jit
+def settled_for_good(t, y, par, hdr):
+    """Exact sufficient test in full contact without slip after the
+    excitation: the column energy never grows, so |u| <= sqrt(2E)/w and
+    |u'| <= sqrt(2E) bound both the uplift test (3.3) and the friction force
+    the column can demand (4.4)."""
+    if t < excitation_end(hdr):
+        return False
+    wn = par[F_WN]
+    E = 0.5 * y[1] * y[1] + 0.5 * wn * wn * y[0] * y[0]
+    U = math.sqrt(2.0 * E) / wn
+    fmax = wn * wn * U + 2.0 * par[F_ZETA] * wn * math.sqrt(2.0 * E)
+    mb = par[F_MB]
+    G = par[F_G]
+    return (par[F_H] * fmax < G * (par[F_B] * (1.0 + mb) - U)
+            and fmax < par[Q_MU_S] * (1.0 + mb) * G)
+
+
+@jit
+def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
+    book_time(t, disc, met)
+    track_slide(y[4], met)
+    track_u(y[0], met)
+    mode = disc[D_MODE]
+    if mode == MODE_ROCK or mode == MODE_SLIDE_ROCK:
+        track_rotation(y[2], met)
+    if at_end or (opt[O_EARLY_EXIT] != 0.0 and mode == MODE_REST
+                  and settled_for_good(t, y, par, hdr)):
+        if mode == MODE_REST:
+            if np.isnan(met[M_T_UPLIFT]):
+                return SAFE_NO_UPLIFT
+            return SAFE_REST
+        return SAFE_MOVING
+    return RUNNING
+
+
+@jit
+def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
+    for i in range(N_MET):
+        met[i] = 0.0
+    met[M_T_UPLIFT] = np.nan
+    met[M_T_OVER] = np.nan
+    met[M_T_PASS_ALPHA] = np.nan
+    met[M_T_LAST_IMPACT] = -np.inf
+    met[M_T_PREV] = t0
+    for i in range(N_DISC):
+        disc[i] = 0
+    sigma = 1 if y[5] > 0.0 else -1
+    if y[2] != 0.0 or y[3] != 0.0:
+        s = 1 if (y[2] > 0.0 or (y[2] == 0.0 and y[3] > 0.0)) else -1
+        if y[5] != 0.0:
+            set_mode(disc, MODE_SLIDE_ROCK, s, sigma)
+        else:
+            set_mode(disc, MODE_ROCK, s, 0)
+        met[M_T_UPLIFT] = t0
+        track_rotation(y[2], met)
+    elif y[5] != 0.0:
+        set_mode(disc, MODE_SLIDE, 1, sigma)
+    else:
+        set_mode(disc, MODE_REST, 1, 0)
+    track_slide(y[4], met)
+    track_u(y[0], met)
+
+
+@jit
+def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
+        cnt):
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
+    return integrate_hybrid(rhs, event, transition, static_margin,
+                            after_step, N_EVENTS, y, par, disc, hdr, smp,
+                            opt, t_eval, met, hist_t, hist_y, hist_d, log,
+                            cnt)
+
+
+@jit
+def flexible_friction_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t,
+                               hist_y, hist_d, log, cnt):
+    """One run of the flexible body with friction (time history, events)."""
+    return run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+               log, cnt)
+
+
+@jit_parallel
+def flexible_friction_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Independent runs in parallel (rows of Y0/PAR/HDR/OPT)."""
+    sweep_rows(run, Y0, PAR, HDR, smp, OPT, status, MET, YF)
