@@ -1,0 +1,52 @@
+"""Hard cases for the flexible body (physics.md 3): stiff columns (omega_n/p = 100 and 300, both
+impact maps, with and without damping) and a 90 s record at dt 0.005.  Every run gets a step
+budget and must end with a definite status and a finite history; the stiff bodies must also give
+the outcome of the rigid limit.  CI runs this file a second time under ``NUMBA_BOUNDSCHECK=1``.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import fastrock as fr
+import hardcases as H
+from test_flexible import I1, I3, body, definite, pulse
+
+HARD_PULSES = [(3.0, 1.0), (2.0, 2.0), (2.5, 6.0)]   # mode 2, mode 1, safe with many impacts
+HARD_BUDGET = 400_000    # steps (accepted + rejected); most measured: 152 495 (I3, 300, zeta 0, 2.5x6, 1026 impacts)
+
+
+@pytest.mark.filterwarnings("ignore:the pivot-switch")
+@pytest.mark.parametrize("a,f", HARD_PULSES)
+@pytest.mark.parametrize("zeta", [0.0, 0.05])
+@pytest.mark.parametrize("impact", [I3, I1])
+@pytest.mark.parametrize("wr", [100, 300])
+def test_stiff_body_finishes_within_budget(wr, impact, zeta, a, f):
+    """Stiff bodies finish with a definite status inside a step budget, no NaN, and the outcome
+    of the rigid limit for these clear-cut pulses."""
+    r = fr.simulate(body(wr, impact, zeta), pulse(a, f), max_steps=HARD_BUDGET, early_exit=True)
+    h = r.history
+    assert np.isfinite(h[["u", "u_dot", "theta", "theta_dot"]].to_numpy()).all()
+    assert definite(r.status), (r.status, r.metrics["steps"], r.metrics["impacts"])
+    assert r.metrics["steps"] + r.metrics["rejected_steps"] <= HARD_BUDGET
+    expected = {1.0: "mode2", 2.0: "mode1", 6.0: "safe"}[f]
+    assert r.outcome == expected
+
+
+def test_step_budget_is_reported():
+    r = fr.simulate(body(100), pulse(2.0, 2.0), max_steps=500)
+    assert r.status == "failed:step-budget"
+
+
+def test_long_record_90s_at_dt_0005():
+    """The 90 s record of the rigid hard cases (18 000 breakpoints), at 0.7 g so that the body
+    rocks (measured: about 170 impacts, 50 000 steps, rest at the end) on a column of
+    omega_n/p = 9, zeta = 0.05: definite, finite, inside the budget, and the run reaches the
+    record's end."""
+    rigid = fr.RigidBlock.rectangle(b=0.3, h=1.2)
+    flex = fr.FlexibleBody(alpha=rigid.alpha, p=rigid.p, omega_n_over_p=9.0, zeta=0.05)
+    rec = H.long_record(peak_g=0.7)
+    res = fr.simulate(flex, rec, t_after=2.0, max_steps=HARD_BUDGET)
+    H.definite(res, HARD_BUDGET, columns=("u", "u_dot", "theta", "theta_dot"))
+    assert res.outcome == "safe" and res.metrics["impacts"] > 0
+    assert res.metrics["time_end"] == pytest.approx(rec.end_time(flex) + 2.0, abs=1e-9)
