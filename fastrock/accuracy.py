@@ -7,7 +7,19 @@ measures, against a much tighter reference (rtol 1e-13):
 * ``err_max_rotation``: |max|theta|/alpha - reference| on a case that stays up;
 * ``err_t_overturn``: |t_overturn - reference| [s] on a case that overturns;
 * ``outcome_mismatch``: share of a spectrum grid whose outcome differs;
-* ``time_per_run`` [s] (kernel time, compiled, averaged over the grid).
+* ``time_per_run`` [s] (kernel time, compiled, averaged over the grid, minimum of 3 sweeps on
+  ``threads`` threads, default all) and ``cpu_per_run`` [s] (CPU time of the process for the
+  same sweeps).  On a shared machine prefer ``threads=1`` and the CPU time: it does not count
+  the time other jobs hold the core, and one thread never spin-waits at a barrier for a
+  descheduled partner (with 2 threads a small grid can show milliseconds of such waiting);
+* friction only: ``err_max_slide`` and ``err_residual_slide`` [m], |max|d| - reference| and
+  |d_end - reference| on the case that stays up (it slides), and the grid outcomes include
+  "slide" (residual slip above the friction's ``slide_tolerance``).
+
+Families (``FAMILIES``): the rigid block; the flexible body; the rigid block against a rear
+wall (the safe case is thrown away from the wall and hits it on the way back, the grid has both
+pulse signs); the rigid block with Coulomb friction (mu_s just above b/h: rocking, slide-rocking
+and slip at impacts; its safe cases slide).
 """
 from __future__ import annotations
 
@@ -21,41 +33,68 @@ DTS = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5)
 REFERENCE_RTOL = 1e-13
 
 
+FAMILIES = ("rigid", "flexible", "wall", "friction")
+
+
 def _family(model):
+    """(body, effects) of a model family: ``effects`` are the keyword arguments of ``simulate``
+    and ``models.select`` (wall=, friction=)."""
     from .bodies import FlexibleBody, RigidBlock
     if model == "rigid":
-        return RigidBlock(alpha=0.25, p=2.0)
+        return RigidBlock(alpha=0.25, p=2.0), {}
     if model == "flexible":
-        return FlexibleBody(alpha=0.3, p=2.0, omega_n_over_p=9.0, zeta=0.05)
-    raise ValueError(f"model must be 'rigid' or 'flexible', got {model!r}")
+        return FlexibleBody(alpha=0.3, p=2.0, omega_n_over_p=9.0, zeta=0.05), {}
+    if model == "wall":
+        # Mennitti et al.'s block (alpha = 0.197, p = 1.70 rad/s) beside an elastic wall at 10 cm
+        # (theta_w = 0.1 alpha), on the negative-theta side: sign +1 pulses throw it toward the wall
+        from .wall import Wall
+        return RigidBlock.rectangle(b=0.5, h=2.5), {"wall": Wall(gap=0.1)}
+    if model == "friction":
+        # mu_s = 0.27 just above b/h = 0.25: rocks, slide-rocks above Shenton's boundary and
+        # slips at impacts; the pulse grid has safe, slide, mode-1 and mode-2 cells
+        from .friction import Friction
+        return RigidBlock.rectangle(b=0.25, h=1.0), {"friction": Friction(0.27)}
+    raise ValueError(f"model must be one of {', '.join(FAMILIES)}, got {model!r}")
 
 
-def _cases(body, excitation):
+# (amplitude / (g tan alpha), omega_p / p, sign) of the safe and the overturning pulse case
+_PULSE_CASES = {"wall": ((2.5, 5.0, -1), (3.0, 3.0, 1))}
+_DEFAULT_PULSE_CASES = ((2.5, 5.0, 1), (3.0, 3.0, 1))
+_GRID_SIGNS = {"wall": (1, -1)}
+# record scale factors (times g tan(alpha) / PGA) of the safe and the overturning record case;
+# with friction the safe case must slide (at 1.5 the block rocks without slipping)
+_RECORD_CASES = {"friction": (2.0, 6.0)}
+_DEFAULT_RECORD_CASES = (1.5, 6.0)
+
+
+def _cases(body, excitation, model="rigid"):
     """(safe case, overturning case, grid) for one excitation kind."""
     from .excitation import Pulse, SampledMotion
     from .records import load_default_record
     if excitation == "pulse":
-        safe = Pulse(2.5, 5.0, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
-        over = Pulse(3.0, 3.0, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
-        grid = [Pulse(a, f, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+        def pulse(a, f, sign=1):
+            return Pulse(a, f, sign=sign, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+        (a_s, f_s, s_s), (a_o, f_o, s_o) = _PULSE_CASES.get(model, _DEFAULT_PULSE_CASES)
+        grid = [pulse(a, f, sign) for sign in _GRID_SIGNS.get(model, (1,))
                 for a in np.linspace(1.2, 6.0, 8) for f in np.linspace(0.5, 8.0, 8)]
-        return safe, over, grid
+        return pulse(a_s, f_s, s_s), pulse(a_o, f_o, s_o), grid
     if excitation == "record":
         rec = load_default_record()
         scale_up = body.g * np.tan(body.alpha) / rec.pga
-        safe = SampledMotion.from_record(rec, scale=1.5 * scale_up)
-        over = SampledMotion.from_record(rec, scale=6.0 * scale_up)
+        k_safe, k_over = _RECORD_CASES.get(model, _DEFAULT_RECORD_CASES)
+        safe = SampledMotion.from_record(rec, scale=k_safe * scale_up)
+        over = SampledMotion.from_record(rec, scale=k_over * scale_up)
         grid = [SampledMotion.from_record(rec, scale=s * scale_up) for s in np.linspace(1.1, 8.0, 24)]
         return safe, over, grid
     raise ValueError(f"excitation must be 'pulse' or 'record', got {excitation!r}")
 
 
-def _grid_rows(body, grid, solver, t_after):
+def _grid_rows(body, grid, solver, t_after, effects=None):
     """Sweep-kernel inputs for a grid of excitations sharing one sample array."""
     from . import excitation as X
     from . import models
     from fastrock.kernels import layout as L
-    spec = models.select(body)
+    spec = models.select(body, **(effects or {}))
     rows = [X.to_header(body, exc) for exc in grid]
     HDR = np.array([h for h, _ in rows])
     smp = rows[0][1]
@@ -65,101 +104,226 @@ def _grid_rows(body, grid, solver, t_after):
     return spec, np.zeros((n, spec.n_state)), np.tile(spec.par, (n, 1)), HDR, smp, OPT
 
 
-def _run_set(body, safe, over, grid, solver, t_after, repeats=3):
+class _threads:
+    """Run the timed sweeps on ``n`` Numba threads (None: leave the setting alone)."""
+
+    def __init__(self, n):
+        self.n = n
+
+    def __enter__(self):
+        if self.n:
+            import numba
+            self.old = numba.get_num_threads()
+            numba.set_num_threads(min(int(self.n), numba.config.NUMBA_NUM_THREADS))
+
+    def __exit__(self, *exc):
+        if self.n:
+            import numba
+            numba.set_num_threads(self.old)
+
+
+def _run_set(body, safe, over, grid, solver, t_after, repeats=3, effects=None, threads=None):
     from .outcomes import outcome_of
     from .simulate import simulate
     from .sweep import run_sweep
     from fastrock.kernels import layout as L
-    r_safe = simulate(body, safe, solver=solver, t_after=t_after, history_capacity=10)
-    r_over = simulate(body, over, solver=solver, t_after=t_after, history_capacity=10)
-    spec, Y0, PAR, HDR, smp, OPT = _grid_rows(body, grid, solver, t_after)
-    best = np.inf
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        status, MET, _, _ = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, progress=False)
-        best = min(best, time.perf_counter() - t0)
-    return dict(max_rotation=r_safe.metrics["max_rotation_ratio"], safe_status=r_safe.status,
-                t_overturn=r_over.metrics["time_overturn"], over_status=r_over.status,
-                outcomes=[outcome_of(c) for c in status], time_per_run=best / len(grid),
-                nfev=float(np.mean(MET[:, L.M_NFEV])))
+    effects = effects or {}
+    r_safe = simulate(body, safe, solver=solver, t_after=t_after, history_capacity=10, **effects)
+    r_over = simulate(body, over, solver=solver, t_after=t_after, history_capacity=10, **effects)
+    spec, Y0, PAR, HDR, smp, OPT = _grid_rows(body, grid, solver, t_after, effects)
+    best = best_cpu = np.inf
+    with _threads(threads):
+        for _ in range(repeats):
+            t0, c0 = time.perf_counter(), time.process_time()
+            status, MET, _, _ = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, progress=False)
+            best = min(best, time.perf_counter() - t0)
+            best_cpu = min(best_cpu, time.process_time() - c0)
+    outcomes = [outcome_of(c) for c in status]
+    out = dict(max_rotation=r_safe.metrics["max_rotation_ratio"], safe_status=r_safe.status,
+               t_overturn=r_over.metrics["time_overturn"], over_status=r_over.status,
+               outcomes=outcomes, time_per_run=best / len(grid), cpu_per_run=best_cpu / len(grid),
+               nfev=float(np.mean(MET[:, L.M_NFEV])))
+    friction = effects.get("friction")
+    if spec.name == "rigid_friction":
+        # as simulate does it: a safe run that slipped by more than the tolerance is a "slide"
+        res = MET[:, L.M_RESIDUAL_SLIDE]
+        out["outcomes"] = ["slide" if o == "safe" and abs(d) > friction.slide_tolerance else o
+                           for o, d in zip(outcomes, res)]
+        out["max_slide"] = r_safe.metrics["max_slide"]
+        out["residual_slide"] = r_safe.metrics["residual_slide"]
+        out["safe_status"] = f"{r_safe.outcome}:{r_safe.status.split(':', 1)[-1]}"
+    return out
 
 
 def work_precision(models=("rigid", "flexible"), excitations=("pulse", "record"), rtols=RTOLS, dts=DTS,
-                   t_after=5.0, record_breakpoints=(True, False), progress=True):
+                   t_after=5.0, record_breakpoints=(True, False), progress=True, grid=None, threads=None):
     """Error against run time for each model family, excitation and setting.
 
     Returns a DataFrame with columns model, excitation, mode ("rtol" /
     "dt"), setting, record_breakpoints, time_per_run [s], nfev,
-    err_max_rotation [-], err_t_overturn [s], outcome_mismatch [-], status.
+    err_max_rotation [-], err_t_overturn [s], outcome_mismatch [-], status,
+    and for the friction family err_max_slide, err_residual_slide [m].
+    ``grid``: keep only this many runs of each spectrum grid (evenly spaced;
+    for quick checks).  ``threads``: Numba threads of the timed sweeps (None:
+    all; recorded in the ``threads`` column, 0 meaning all).
     """
     from .solver import Solver
     rows = []
     for model in models:
-        body = _family(model)
+        body, effects = _family(model)
         for excitation in excitations:
-            safe, over, grid = _cases(body, excitation)
+            safe, over, cells = _cases(body, excitation, model)
+            if grid is not None and grid < len(cells):
+                cells = [cells[i] for i in np.linspace(0, len(cells) - 1, max(int(grid), 1)).astype(int)]
             bps = record_breakpoints if excitation == "record" else (True,)
             for bp in bps:
-                ref = _run_set(body, safe, over, grid, Solver(rtol=REFERENCE_RTOL, atol=1e-15,
-                                                               record_breakpoints=bp), t_after)
+                ref = _run_set(body, safe, over, cells, Solver(rtol=REFERENCE_RTOL, atol=1e-15,
+                                                                record_breakpoints=bp), t_after,
+                               effects=effects)
                 settings = [("rtol", r) for r in rtols] + [("dt", d) for d in dts]
                 for mode, val in settings:
                     sol = Solver(rtol=val, record_breakpoints=bp) if mode == "rtol" else \
                         Solver(dt=val, record_breakpoints=bp, max_steps=50_000_000)
-                    res = _run_set(body, safe, over, grid, sol, t_after)
+                    res = _run_set(body, safe, over, cells, sol, t_after, effects=effects, threads=threads)
                     mism = np.mean([a != b for a, b in zip(res["outcomes"], ref["outcomes"])])
-                    rows.append(dict(model=model, excitation=excitation, mode=mode, setting=val,
-                                     record_breakpoints=bp, time_per_run=res["time_per_run"], nfev=res["nfev"],
-                                     err_max_rotation=abs(res["max_rotation"] - ref["max_rotation"]),
-                                     err_t_overturn=abs(res["t_overturn"] - ref["t_overturn"]),
-                                     outcome_mismatch=mism,
-                                     status=f"{res['safe_status']}/{res['over_status']}"))
+                    row = dict(model=model, excitation=excitation, mode=mode, setting=val,
+                               record_breakpoints=bp, time_per_run=res["time_per_run"],
+                               cpu_per_run=res["cpu_per_run"], threads=int(threads or 0), nfev=res["nfev"],
+                               err_max_rotation=abs(res["max_rotation"] - ref["max_rotation"]),
+                               err_t_overturn=abs(res["t_overturn"] - ref["t_overturn"]),
+                               outcome_mismatch=mism,
+                               status=f"{res['safe_status']}/{res['over_status']}")
+                    if "max_slide" in res:
+                        row["err_max_slide"] = abs(res["max_slide"] - ref["max_slide"])
+                        row["err_residual_slide"] = abs(res["residual_slide"] - ref["residual_slide"])
+                    rows.append(row)
                     if progress:
-                        r = rows[-1]
+                        slide = (f" err_slide={row['err_residual_slide']:.2e}" if "err_residual_slide" in row
+                                 else "")
                         print(f"{model:9s} {excitation:7s} bp={int(bp)} {mode}={val:<8g} "
-                              f"t/run={r['time_per_run'] * 1e3:8.3f} ms  err_rot={r['err_max_rotation']:.2e} "
-                              f"err_t={r['err_t_overturn']:.2e} mismatch={mism:.3f}", flush=True)
+                              f"t/run={row['time_per_run'] * 1e3:8.3f} ms cpu/run={row['cpu_per_run'] * 1e3:8.3f} ms "
+                              f"err_rot={row['err_max_rotation']:.2e} "
+                              f"err_t={row['err_t_overturn']:.2e}{slide} mismatch={mism:.3f}", flush=True)
     return pd.DataFrame(rows)
 
 
-def plot_work_precision(df, measure="err_max_rotation"):
-    """Log-log error against time per run, one panel per model/excitation."""
+MEASURE_LABELS = {
+    "err_max_rotation": "error in max|θ|/α",
+    "err_t_overturn": "error in overturning time [s]",
+    "outcome_mismatch": "share of grid outcomes changed",
+    "err_max_slide": "error in max|d| [m]",
+    "err_residual_slide": "error in residual slide [m]",
+}
+CLOCKS = {"wall": ("time_per_run", "time per run [s]"),
+          "cpu": ("cpu_per_run", "CPU time per run [s]")}
+
+
+def default_measures(df):
+    """err_max_rotation, and the residual-slide error when the table has a friction family."""
+    if "err_residual_slide" in df and df["err_residual_slide"].notna().any():
+        return ("err_max_rotation", "err_residual_slide")
+    return ("err_max_rotation",)
+
+
+def plot_work_precision(df, measure=None, clock="wall"):
+    """Log-log error against time per run: one column per model/excitation, one row per
+    measure (``measure``: a column name or a list of them; default :func:`default_measures`).
+    ``clock``: "wall" (time_per_run) or "cpu" (cpu_per_run) on the x axis.  Zero errors are
+    drawn at 1e-16; a measure a family does not have leaves its panel empty."""
     from .plotting import _pyplot
     plt = _pyplot()
-    keys = list(df.groupby(["model", "excitation"]).groups)
-    fig, axes = plt.subplots(1, len(keys), figsize=(4.6 * len(keys), 4), squeeze=False, constrained_layout=True)
-    for ax, (model, exc) in zip(axes[0], keys):
-        sub = df[(df.model == model) & (df.excitation == exc)]
-        for (mode, bp), g in sub.groupby(["mode", "record_breakpoints"]):
-            lab = ("adaptive rtol" if mode == "rtol" else "fixed dt") + ("" if exc == "pulse" else
-                                                                        (" (breakpoints)" if bp else " (no bp)"))
-            err = np.maximum(g[measure].to_numpy(), 1e-16)
-            ax.loglog(g["time_per_run"], err, "o-" if mode == "rtol" else "s--", label=lab, ms=4)
-            for x, y, v in zip(g["time_per_run"], err, g["setting"]):
-                ax.annotate(f"{v:g}", (x, y), fontsize=6, alpha=0.7)
-        ax.set_title(f"{model}, {exc}")
-        ax.set_xlabel("time per run [s]")
-        ax.set_ylabel(measure)
-        ax.legend(fontsize=7)
+    measures = default_measures(df) if measure is None else \
+        ((measure,) if isinstance(measure, str) else tuple(measure))
+    for m in measures:
+        if m not in df:
+            raise ValueError(f"unknown measure {m!r}: the table has {', '.join(c for c in df if c.startswith('err_') or c == 'outcome_mismatch')}")
+    if clock not in CLOCKS:
+        raise ValueError(f"clock must be 'wall' or 'cpu', got {clock!r}")
+    tcol, tlabel = CLOCKS[clock]
+    if "threads" in df and df["threads"].nunique() == 1 and int(df["threads"].iloc[0]) > 0:
+        n = int(df["threads"].iloc[0])
+        tlabel += f", {n} thread" + ("s" if n > 1 else "")
+    keys = list(df.groupby(["model", "excitation"], sort=False).groups)
+    fig, axes = plt.subplots(len(measures), len(keys), figsize=(4.6 * len(keys), 4 * len(measures)),
+                             squeeze=False, constrained_layout=True)
+    for row, meas in zip(axes, measures):
+        for ax, (model, exc) in zip(row, keys):
+            sub = df[(df.model == model) & (df.excitation == exc)]
+            ax.set_title(f"{model}, {exc}")
+            ax.set_xlabel(tlabel)
+            ax.set_ylabel(MEASURE_LABELS.get(meas, meas))
+            if sub[meas].isna().all():
+                ax.text(0.5, 0.5, "n/a", transform=ax.transAxes, ha="center")
+                continue
+            for (mode, bp), g in sub.groupby(["mode", "record_breakpoints"]):
+                lab = ("adaptive rtol" if mode == "rtol" else "fixed dt") + (
+                    "" if exc == "pulse" else (" (breakpoints)" if bp else " (no bp)"))
+                err = np.maximum(g[meas].to_numpy(dtype=float), 1e-16)
+                ax.loglog(g[tcol], err, "o-" if mode == "rtol" else "s--", label=lab, ms=4)
+                for x, y, v in zip(g[tcol], err, g["setting"]):
+                    ax.annotate(f"{v:g}", (x, y), fontsize=6, alpha=0.7)
+            ax.legend(fontsize=7)
     return fig
 
 
 def add_subcommand(sub):
     p = sub.add_parser("accuracy", help="work-precision: error against run time (PNG + CSV)")
-    p.add_argument("--models", default="rigid,flexible")
+    p.add_argument("--models", default=",".join(FAMILIES),
+                   help=f"comma-separated model families: {', '.join(FAMILIES)} (default: all)")
     p.add_argument("--excitations", default="pulse,record")
     p.add_argument("--quick", action="store_true", help="fewer settings (rtol 1e-3..1e-10, dt 1e-2..1e-4)")
+    p.add_argument("--rtols", default=None, help="comma-separated rtol values (overrides --quick)")
+    p.add_argument("--dts", default=None, help="comma-separated fixed steps [s] (overrides --quick)")
+    p.add_argument("--grid", type=int, default=None,
+                   help="use only this many runs of each spectrum grid (evenly spaced; quick checks)")
+    p.add_argument("--t-after", type=float, default=5.0, help="seconds simulated after the excitation (5)")
+    p.add_argument("--measures", default=None,
+                   help="comma-separated error columns to plot, one row each (default: err_max_rotation, "
+                        "plus err_residual_slide with friction)")
+    p.add_argument("--clock", choices=tuple(CLOCKS), default="wall",
+                   help="x axis: wall time per run (default) or CPU time per run (steadier on a busy machine)")
+    p.add_argument("--threads", type=int, default=None,
+                   help="Numba threads for the timed sweeps (default: all; 1 with --clock cpu on a shared machine)")
     p.add_argument("--csv", default="accuracy.csv")
     p.add_argument("--png", default="accuracy.png")
     p.set_defaults(func=_cmd)
 
 
+def _floats(text, name):
+    try:
+        vals = tuple(float(v) for v in text.split(",") if v.strip())
+    except ValueError:
+        raise ValueError(f"--{name}: expected comma-separated numbers, got {text!r}") from None
+    if not vals or not all(v > 0 and np.isfinite(v) for v in vals):
+        raise ValueError(f"--{name}: expected positive numbers, got {text!r}")
+    return vals
+
+
 def _cmd(args):
+    models = tuple(m.strip() for m in args.models.split(",") if m.strip())
+    bad = [m for m in models if m not in FAMILIES]
+    if bad:
+        raise ValueError(f"--models: unknown family {', '.join(bad)} (choose from {', '.join(FAMILIES)})")
     rtols = RTOLS[:-2] if args.quick else RTOLS
     dts = DTS[:5] if args.quick else DTS
-    df = work_precision(tuple(args.models.split(",")), tuple(args.excitations.split(",")), rtols, dts)
+    if args.rtols is not None:
+        rtols = _floats(args.rtols, "rtols")
+    if args.dts is not None:
+        dts = _floats(args.dts, "dts")
+    if args.threads is not None and args.threads < 1:
+        raise ValueError(f"--threads must be >= 1, got {args.threads}")
+    excitations = tuple(e.strip() for e in args.excitations.split(",") if e.strip())
+    bad = [e for e in excitations if e not in ("pulse", "record")]
+    if bad or not excitations:
+        raise ValueError(f"--excitations: expected pulse and/or record, got {args.excitations!r}")
+    measures = None if args.measures is None else tuple(m.strip() for m in args.measures.split(","))
+    bad = [m for m in measures or () if m not in MEASURE_LABELS]
+    if bad:
+        raise ValueError(f"--measures: unknown {', '.join(bad)} (choose from {', '.join(MEASURE_LABELS)})")
+    df = work_precision(models, excitations, rtols, dts, t_after=args.t_after, grid=args.grid,
+                        threads=args.threads)
     df.to_csv(args.csv, index=False)
-    fig = plot_work_precision(df)
+    fig = plot_work_precision(df, measures, clock=args.clock)
     fig.savefig(args.png, dpi=130)
     print(f"wrote {args.csv} and {args.png}")
     return 0
