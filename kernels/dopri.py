@@ -67,10 +67,13 @@ def rms_norm(x, scale):
 
 
 @jit_generic
-def rk_step(rhs, t, y, f, h, K, ytmp, y_new, par, disc, hdr, smp):
+def rk_step(rhs, t, y, f, h, K, ytmp, fs, y_new, par, disc, hdr, smp):
     """rk.py 14-71 ``rk_step``: one DP5 step; fills K (7 x n) and y_new.
 
     K[6] receives f(t + h, y_new) (FSAL).  Returns nothing; 6 rhs calls.
+    Each stage is evaluated into the work vector ``fs`` and copied into its
+    row of K: passing the row K[s] itself would create an array view (and
+    its reference-count traffic) on every stage.
     """
     n = y.shape[0]
     for i in range(n):
@@ -81,13 +84,17 @@ def rk_step(rhs, t, y, f, h, K, ytmp, y_new, par, disc, hdr, smp):
             for j in range(s):
                 dy += K[j, i] * A[s][j]
             ytmp[i] = y[i] + dy * h
-        rhs(t + C[s] * h, ytmp, par, disc, hdr, smp, K[s])
+        rhs(t + C[s] * h, ytmp, par, disc, hdr, smp, fs)
+        for i in range(n):
+            K[s, i] = fs[i]
     for i in range(n):
         acc = 0.0
         for j in range(N_STAGES):
             acc += K[j, i] * B[j]
         y_new[i] = y[i] + h * acc
-    rhs(t + h, y_new, par, disc, hdr, smp, K[N_STAGES])
+    rhs(t + h, y_new, par, disc, hdr, smp, fs)
+    for i in range(n):
+        K[N_STAGES, i] = fs[i]
 
 
 @jit

@@ -79,12 +79,6 @@ def _store(t, y, disc, hist_t, hist_y, hist_d, cnt):
 
 
 @jit_generic
-def _event_at(event, k, t, t_old, h, y_old, Q, yev, par, disc, hdr, smp):
-    dense_eval(t, t_old, h, y_old, Q, yev)
-    return event(k, t, yev, par, disc, hdr, smp)
-
-
-@jit_generic
 def _bisect_root(event, k, lo, hi, t_old, h, y_old, Q, yev, par, disc, hdr,
                  smp):
     """Bisection on the dense interpolant: g(lo) > 0 >= g(hi).  Returns hi,
@@ -94,8 +88,8 @@ def _bisect_root(event, k, lo, hi, t_old, h, y_old, Q, yev, par, disc, hdr,
         if hi - lo <= tol:
             return hi, True
         mid = 0.5 * (lo + hi)
-        g, _gd, _term = _event_at(event, k, mid, t_old, h, y_old, Q, yev, par,
-                                  disc, hdr, smp)
+        dense_eval(mid, t_old, h, y_old, Q, yev)
+        g, _gd, _term = event(k, mid, yev, par, disc, hdr, smp)
         if g > 0.0:
             lo = mid
         else:
@@ -112,8 +106,8 @@ def _bisect_extremum(event, k, lo, hi, sign, t_old, h, y_old, Q, yev, par,
         if hi - lo <= tol:
             break
         mid = 0.5 * (lo + hi)
-        _g, gd, _term = _event_at(event, k, mid, t_old, h, y_old, Q, yev,
-                                  par, disc, hdr, smp)
+        dense_eval(mid, t_old, h, y_old, Q, yev)
+        _g, gd, _term = event(k, mid, yev, par, disc, hdr, smp)
         if sign * gd < 0.0:
             lo = mid
         else:
@@ -121,10 +115,38 @@ def _bisect_extremum(event, k, lo, hi, sign, t_old, h, y_old, Q, yev, par,
     return 0.5 * (lo + hi)
 
 
+# How an event can fire inside one step, judged from its values at the two
+# step ends (see _locate).
+NO_ROOT = 0
+SIGN_CHANGE = 1     # g > 0 at the start, <= 0 at the end
+SEARCH_MIN = 2      # g > 0 at both ends, gdot goes - to +: interior minimum
+SEARCH_MAX = 3      # started on the surface (terminal, phase start) and
+#                     gdot goes + to -: it may have left and come back
+AT_START = 4        # started on the surface and never left: fires at once
+
+
+@jit
+def _bracket_kind(terminal, phase_start, g0, gd0, g1, gd1):
+    """Classify event k on one step from its end values (scalars only, so
+    the driver can skip ``_locate`` for the common no-root case cheaply)."""
+    if g0 > 0.0:
+        if g1 <= 0.0:
+            return SIGN_CHANGE
+        if gd0 < 0.0 and gd1 > 0.0:
+            return SEARCH_MIN
+        return NO_ROOT
+    if terminal and phase_start and g1 <= 0.0:
+        # gd0 == 0: released from rest (uplift), it may rise and fall back
+        if gd0 >= 0.0 and gd1 < 0.0:
+            return SEARCH_MAX
+        return AT_START
+    return NO_ROOT
+
+
 @jit_generic
-def _locate(event, k, terminal, phase_start, ta, tb, g0, gd0, g1, gd1,
-            y_old, h, Q, yev, par, disc, hdr, smp):
-    """Root of event k inside [ta, tb] (inf if none) and a converged flag.
+def _locate(event, k, kind, ta, tb, y_old, h, Q, yev, par, disc, hdr, smp):
+    """Root of event k inside [ta, tb] (inf if none) and a converged flag,
+    for kind SIGN_CHANGE, SEARCH_MIN or SEARCH_MAX (``_bracket_kind``).
 
     Besides a sign change at the step ends, an interior minimum of g (gdot
     goes - to +) is located and tested, so that a crossing and its return
@@ -133,38 +155,20 @@ def _locate(event, k, terminal, phase_start, ta, tb, g0, gd0, g1, gd1,
     """
     lo = ta
     hi = tb
-    bracket = False
-    search = 0.0       # +1: look for a minimum, -1: for a maximum
-    if g0 > 0.0:
-        if g1 <= 0.0:
-            bracket = True
-        elif gd0 < 0.0 and gd1 > 0.0:
-            search = 1.0
-    elif terminal and phase_start and g1 <= 0.0:
-        # started on the surface: did it leave and come back, or never leave?
-        # gd0 == 0: released from rest (uplift), it may rise and fall back
-        if gd0 >= 0.0 and gd1 < 0.0:
-            search = -1.0
-        else:
-            return ta, True
-    else:
-        return np.inf, True
-    if search != 0.0:
+    if kind != SIGN_CHANGE:
+        search = 1.0 if kind == SEARCH_MIN else -1.0
         tm = _bisect_extremum(event, k, ta, tb, search, ta, h, y_old, Q, yev,
                               par, disc, hdr, smp)
-        gm, _gd, _term = _event_at(event, k, tm, ta, h, y_old, Q, yev, par,
-                                   disc, hdr, smp)
-        if search > 0.0 and gm <= 0.0:
-            hi = tm
-            bracket = True
-        elif search < 0.0:
+        dense_eval(tm, ta, h, y_old, Q, yev)
+        gm, _gd, _term = event(k, tm, yev, par, disc, hdr, smp)
+        if search > 0.0:
             if gm > 0.0:
-                lo = tm
-                bracket = True
-            else:
-                return ta, True
-    if not bracket:
-        return np.inf, True
+                return np.inf, True
+            hi = tm
+        else:
+            if gm <= 0.0:
+                return ta, True     # never left the surface
+            lo = tm
     return _bisect_root(event, k, lo, hi, ta, h, y_old, Q, yev, par, disc,
                         hdr, smp)
 
@@ -340,7 +344,8 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                 if t_new > t_bound or t_bound - t_new < 1e-9 * dt_fixed:
                     t_new = t_bound
                 h = t_new - t
-                rk_step(rhs, t, y, f, h, K, ytmp, y_new, par, disc, hdr, smp)
+                rk_step(rhs, t, y, f, h, K, ytmp, ftmp, y_new, par, disc, hdr,
+                        smp)
                 met[M_NFEV] += 6
                 steps_taken += 1.0
                 if not _all_finite(y_new):
@@ -369,8 +374,8 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                         t_new = t_bound
                     h = t_new - t
                     h_abs = abs(h)
-                    rk_step(rhs, t, y, f, h, K, ytmp, y_new, par, disc, hdr,
-                            smp)
+                    rk_step(rhs, t, y, f, h, K, ytmp, ftmp, y_new, par, disc,
+                            hdr, smp)
                     met[M_NFEV] += 6
                     steps_taken += 1.0
                     err = error_norm(K, h, y, y_new, rtol, atol, ytmp)
@@ -400,9 +405,16 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                 roots[k] = np.inf
                 if not np.isfinite(g0[k]) and not np.isfinite(g1[k]):
                     continue
-                r, ok = _locate(event, k, term[k], phase_start, t, t_new,
-                                g0[k], gd0[k], g1[k], gd1[k], y_old, h, Q,
-                                yev, par, disc, hdr, smp)
+                kind = _bracket_kind(term[k], phase_start, g0[k], gd0[k],
+                                     g1[k], gd1[k])
+                if kind == NO_ROOT:
+                    continue
+                if kind == AT_START:
+                    r = t
+                    ok = True
+                else:
+                    r, ok = _locate(event, k, kind, t, t_new, y_old, h, Q,
+                                    yev, par, disc, hdr, smp)
                 if not ok:
                     event_failed = True
                 roots[k] = r
