@@ -10,7 +10,12 @@ import numpy as np
 
 
 def _body(args):
-    from .bodies import RigidBlock
+    from .bodies import FlexibleBody, RigidBlock
+    if getattr(args, "omega_n_over_p", None) is not None:
+        if args.b is not None or args.h is not None:
+            raise ValueError("--omega-n-over-p (flexible body) takes --alpha and --p, not --b/--h")
+        return FlexibleBody(alpha=args.alpha, p=args.p, omega_n_over_p=args.omega_n_over_p, zeta=args.zeta,
+                            base_mass_ratio=args.base_mass_ratio)
     if args.b is not None or args.h is not None:
         if args.b is None or args.h is None:
             raise ValueError("give both --b and --h (half-width and half-height, m)")
@@ -30,7 +35,7 @@ def _friction(args):
     if getattr(args, "mu_s", None) is None:
         return None
     from .friction import Friction
-    return Friction(args.mu_s, args.mu_k)
+    return Friction(args.mu_s, args.mu_k, lift_off=args.lift_off)
 
 
 def _add_body_options(p):
@@ -40,6 +45,12 @@ def _add_body_options(p):
     g.add_argument("--b", type=float, help="half-width [m] (with --h: rectangle, overrides --alpha/--p)")
     g.add_argument("--h", type=float, help="half-height [m]")
     g.add_argument("--e", type=float, help="restitution (default: Housner, 1 - 1.5 sin^2 alpha)")
+    fb = p.add_argument_group("flexible body (elastic column on a rocking base, physics.md 3)")
+    fb.add_argument("--omega-n-over-p", type=float,
+                    help="column frequency ratio omega_n/p: a flexible body instead of a rigid block")
+    fb.add_argument("--zeta", type=float, default=0.0, help="column damping ratio (default 0)")
+    fb.add_argument("--base-mass-ratio", type=float,
+                    help="rigid base mass m_b/m (default 0, or 0.1 with --mu-s)")
     w = p.add_argument_group("rear wall (one-sided rocking)")
     w.add_argument("--wall-gap", type=float, help="clear gap d [m] to a rear wall (default: no wall)")
     w.add_argument("--wall-side", type=int, default=-1, choices=(-1, 1),
@@ -50,6 +61,9 @@ def _add_body_options(p):
     f = p.add_argument_group("friction (sliding)")
     f.add_argument("--mu-s", type=float, help="static friction coefficient (default: no sliding)")
     f.add_argument("--mu-k", type=float, help="kinetic friction coefficient (default mu_s)")
+    f.add_argument("--lift-off", default="stop", choices=("stop", "hold"),
+                   help="flexible body, N reaching 0 while rocking: stop with 'flight' (default) or hold the "
+                        "pivot down, slipping without friction while N < 0")
 
 
 def _add_solver_options(p):

@@ -102,7 +102,7 @@ class Scene:
         friction = None
         if "friction" in data:
             from .friction import Friction
-            friction = Friction(**_only(dict(data["friction"]), "friction", {"mu_s", "mu_k", "slide_tolerance"}))
+            friction = Friction(**_only(dict(data["friction"]), "friction", {"mu_s", "mu_k", "slide_tolerance", "lift_off"}))
         solver = Solver(**_only(dict(data.get("solver", {})), "solver",
                                 {"rtol", "atol", "dt", "max_steps", "max_step", "record_breakpoints",
                                  "eps_omega", "eps_t"}))
@@ -131,9 +131,10 @@ def _body(d):
     if kind == "flexible":
         if "K" in d:
             return FlexibleBody.from_dimensions(**_only(d, "body", {"m", "K", "c", "B", "H", "I_m", "impact", "e",
-                                                                    "g", "theta_over"}))
+                                                                    "g", "theta_over", "m_b", "h_b"}))
         return FlexibleBody(**_only(d, "body", {"alpha", "p", "omega_n_over_p", "zeta", "e", "impact", "g",
-                                                "theta_over", "rotary_inertia_ratio", "mass"}))
+                                                "theta_over", "rotary_inertia_ratio", "mass", "base_mass_ratio",
+                                                "base_cm_height"}))
     raise ValueError(f"[body] type must be 'rigid' or 'flexible', got {kind!r}")
 
 
