@@ -15,12 +15,12 @@ import math
 import numpy as np
 
 from .config import jit, jit_parallel
-from .excitation import excitation_end, ground, ground_rates
+from .excitation import ground, ground_rates
 from .hybrid import integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_FLIGHT, EV_IMPACT,
                      EV_OVERTURN, EV_PASS_ALPHA, EV_REST, EV_UPLIFT, FLIGHT,
                      M_IMPACTS, M_MAX_ABS_THETA, M_MAX_THETA_NEG,
-                     M_MAX_THETA_POS, M_T_LAST_IMPACT, M_T_OVER,
+                     M_MAX_THETA_POS, M_T_EXC_END, M_T_LAST_IMPACT, M_T_OVER,
                      M_T_PASS_ALPHA, M_T_UPLIFT, MODE_REST, MODE_ROCK, N_DISC,
                      N_MET, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T, O_T0,
                      OVERTURN_MODE1, OVERTURN_MODE2, RUNNING, SAFE_BOUNDED,
@@ -51,43 +51,76 @@ K_PASS_ALPHA = 3
 K_FLIGHT = 4
 
 
+# Hot paths (rhs, event, static_margin, after_step) read the array entries
+# they need before calling anything.  Numba increfs every array argument on
+# entry and decrefs it after its last use; LLVM's reference-count pruning
+# removes such a pair only when no call sits between the two (a call may
+# fail and leave through its error path).  An array still alive across a
+# call therefore costs two atomic operations on every evaluation.  Reading
+# first leaves only the arrays the call itself needs (hdr, smp), and out.
+
+
 @jit
-def theta_ddot(t, theta, s, par, hdr, smp):
-    """Housner's exact EOM about pivot s (physics.md 1)."""
-    ag, av = ground(t, hdr, smp)
-    g = par[P_G]
-    p = par[P_P]
-    phi = s * par[P_ALPHA] - theta
+def housner(theta, s, alpha, p, g, ag, av):
+    """Housner's exact EOM about pivot s (physics.md 1), on scalars: a_g
+    and a_v are the ground accelerations, G = g + a_v."""
+    phi = s * alpha - theta
     return -p * p * ((g + av) * math.sin(phi) + ag * math.cos(phi)) / g
 
 
 @jit
+def theta_ddot(t, theta, s, par, hdr, smp):
+    """Housner's exact EOM about pivot s (physics.md 1) at time t."""
+    alpha = par[P_ALPHA]
+    p = par[P_P]
+    g = par[P_G]
+    ag, av = ground(t, hdr, smp)
+    return housner(theta, s, alpha, p, g, ag, av)
+
+
+@jit
 def rhs(t, y, par, disc, hdr, smp, out):
-    out[0] = y[1]
-    out[1] = theta_ddot(t, y[0], disc[D_PIVOT], par, hdr, smp)
+    theta = y[0]
+    w = y[1]
+    s = disc[D_PIVOT]
+    alpha = par[P_ALPHA]
+    p = par[P_P]
+    g = par[P_G]
+    ag, av = ground(t, hdr, smp)
+    out[0] = w
+    out[1] = housner(theta, s, alpha, p, g, ag, av)
 
 
 @jit
 def event(k, t, y, par, disc, hdr, smp):
     s = disc[D_PIVOT]
+    theta = y[0]
+    w = y[1]
     if k == K_IMPACT:
-        return s * y[0], s * y[1], True
+        return s * theta, s * w, True
     if k == K_OVERTURN:
-        return par[P_THETA_OVER] - s * y[0], -s * y[1], True
-    if k == K_PEAK:
-        return s * y[1], s * theta_ddot(t, y[0], s, par, hdr, smp), False
+        return par[P_THETA_OVER] - s * theta, -s * w, True
     if k == K_PASS_ALPHA:
-        return par[P_ALPHA] - s * y[0], -s * y[1], False
+        return par[P_ALPHA] - s * theta, -s * w, False
+    if k == K_PEAK:
+        alpha = par[P_ALPHA]
+        p = par[P_P]
+        g = par[P_G]
+        ag, av = ground(t, hdr, smp)
+        return s * w, s * housner(theta, s, alpha, p, g, ag, av), False
+    g = par[P_G]
     _ag, _dag, av, dav = ground_rates(t, hdr, smp)
-    return par[P_G] + av, dav, True
+    return g + av, dav, True
 
 
 @jit
 def static_margin(t, y, par, disc, hdr, smp):
     """Full contact holds while |a_g| <= G tan(alpha) (physics.md 1); the
     static phase ends when this margin becomes negative."""
+    alpha = par[P_ALPHA]
+    g = par[P_G]
     ag, av = ground(t, hdr, smp)
-    return (par[P_G] + av) * math.tan(par[P_ALPHA]) * (1.0 + UPLIFT_RTOL) - abs(ag)
+    return (g + av) * math.tan(alpha) * (1.0 + UPLIFT_RTOL) - abs(ag)
 
 
 @jit
@@ -203,45 +236,59 @@ def free_energy(y, s, par):
 
 
 @jit
-def bounded_after_excitation(t, y, par, disc, hdr, met):
+def bounded_after_excitation(theta, w, s, alpha, p, e):
     """Early decision once the excitation is over (exact, not a heuristic):
     free rocking conserves energy between impacts and impacts multiply it
     by e^2 <= 1, so a block inside the well (|theta| < alpha) with energy
-    below the barrier 1 - cos(alpha) can never pass |theta| = alpha.  The next two peaks follow in closed form and are
-    folded into the metrics; later peaks are lower.  Returns True if safe."""
-    if t < excitation_end(hdr):
-        return False
-    s = disc[D_PIVOT]
-    a = par[P_ALPHA]
-    if not s * y[0] < a:
-        return False     # past the unstable equilibrium: outside the well
-    E = free_energy(y, s, par)
-    if not E < 1.0 - math.cos(a):
-        return False
-    e2 = par[P_E] * par[P_E]
-    if s * y[1] > 0.0:
+    below the barrier 1 - cos(alpha) can never pass |theta| = alpha.  The
+    next two peaks follow in closed form; later peaks are lower.  State
+    (theta, theta' = w) about pivot s, on scalars; returns (safe, peak 1,
+    peak 2), the peaks as signed rotations."""
+    if not s * theta < alpha:
+        return False, 0.0, 0.0   # past the unstable equilibrium
+    # free_energy, on scalars
+    E = 0.5 * w * w / (p * p) + math.cos(alpha - s * theta) - math.cos(alpha)
+    if not E < 1.0 - math.cos(alpha):
+        return False, 0.0, 0.0
+    e2 = e * e
+    if s * w > 0.0:
         side1 = s
         e1 = E
     else:
         side1 = -s
         e1 = e2 * E
-    track_rotation(side1 * peak_from_energy(a, e1), met)
-    track_rotation(-side1 * peak_from_energy(a, e2 * e1), met)
-    return True
+    return (True, side1 * peak_from_energy(alpha, e1),
+            -side1 * peak_from_energy(alpha, e2 * e1))
 
 
 @jit
 def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
-    track_rotation(y[0], met)
+    # Every array entry is read here, before any branch: the arrays other
+    # than met then die in the entry block, where their incref/decref pairs
+    # are pruned (see "Hot paths" above).
+    theta = y[0]
+    w = y[1]
+    s = disc[D_PIVOT]
+    mode = disc[D_MODE]
+    alpha = par[P_ALPHA]
+    p = par[P_P]
+    e = par[P_E]
+    early = opt[O_EARLY_EXIT] != 0.0
+    track_rotation(theta, met)
     if at_end:
-        if disc[D_MODE] == MODE_REST:
+        if mode == MODE_REST:
             if np.isnan(met[M_T_UPLIFT]):
                 return SAFE_NO_UPLIFT
             return SAFE_REST
         return SAFE_MOVING
-    if opt[O_EARLY_EXIT] != 0.0 and disc[D_MODE] == MODE_ROCK:
-        if bounded_after_excitation(t, y, par, disc, hdr, met):
-            return SAFE_BOUNDED
+    if not early or mode != MODE_ROCK or t < met[M_T_EXC_END]:
+        return RUNNING
+    # free rocking from now on: the exact early decision
+    safe, pk1, pk2 = bounded_after_excitation(theta, w, s, alpha, p, e)
+    if safe:
+        track_rotation(pk1, met)
+        track_rotation(pk2, met)
+        return SAFE_BOUNDED
     return RUNNING
 
 
