@@ -8,7 +8,8 @@ p [rad/s], e [-], g [m/s^2], theta_over [rad].  Events while rocking:
 1 overturn      g = theta_over - s*theta    terminal
 2 peak          g = s*theta'                observer (max rotation)
 3 pass alpha    g = alpha - s*theta         observer (first time)
-4 flight        g = G = g + a_v             terminal
+4 flight        g = G = g + a_v             terminal (inf, inactive,
+                                            without a vertical channel)
 """
 import math
 
@@ -18,13 +19,13 @@ from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
 from .hybrid import integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_FLIGHT, EV_IMPACT,
-                     EV_OVERTURN, EV_PASS_ALPHA, EV_REST, EV_UPLIFT, FLIGHT,
-                     M_IMPACTS, M_MAX_ABS_THETA, M_MAX_THETA_NEG,
+                     EV_OVERTURN, EV_PASS_ALPHA, EV_REST, EV_UPLIFT, EXC_NONE,
+                     FLIGHT, M_IMPACTS, M_MAX_ABS_THETA, M_MAX_THETA_NEG,
                      M_MAX_THETA_POS, M_T_EXC_END, M_T_LAST_IMPACT, M_T_OVER,
                      M_T_PASS_ALPHA, M_T_UPLIFT, MODE_REST, MODE_ROCK, N_DISC,
-                     N_MET, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T, O_T0,
+                     N_HDR, N_MET, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T, O_T0,
                      OVERTURN_MODE1, OVERTURN_MODE2, RUNNING, SAFE_BOUNDED,
-                     SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
+                     SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST, X_KIND)
 
 P_ALPHA = 0
 P_P = 1
@@ -109,6 +110,8 @@ def event(k, t, y, par, disc, hdr, smp):
         ag, av = ground(t, hdr, smp)
         return s * w, s * housner(theta, s, alpha, p, g, ag, av), False
     g = par[P_G]
+    if int(hdr[N_HDR + X_KIND]) == EXC_NONE:
+        return np.inf, 0.0, True        # G = g > 0 throughout
     _ag, _dag, av, dav = ground_rates(t, hdr, smp)
     return g + av, dav, True
 
