@@ -295,7 +295,7 @@ def fig_histories(runs, path, amp=HISTORY_AMP, mu=HISTORY_MU):
         col[3].set_xlabel("t [s]")
         contact = h.contact.to_numpy()
         ev = r.events
-        lifts = list(zip(ev.t[ev.event == "flight"], ev.t[ev.event == "contact"]))
+        lifts = list(zip(ev.t[ev.event == "lift-off-held"], ev.t[ev.event == "reload"]))
         for ax in col:
             _shade(ax, t, contact == "slide-rock", "#d73027")
             _shade(ax, t, contact == "slide", "#4575b4")

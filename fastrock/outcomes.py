@@ -75,6 +75,8 @@ EVENT_NAMES = {
     L.EV_STICK: "stick",
     L.EV_PEAK: "peak",
     L.EV_CONTACT: "contact",
+    L.EV_LIFT_OFF_HELD: "lift-off-held",
+    L.EV_RELOAD: "reload",
 }
 
 MODE_NAMES = {

@@ -42,7 +42,7 @@ from .flexible import (F_ALPHA, F_B, F_G, F_H, F_HB, F_MB, F_THETA_OVER, F_WN,
 from .friction import track_slide
 from .hybrid import integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
-                     EV_CONTACT, FAIL_INCONSISTENT, M_N_LIFT_OFF,
+                     EV_LIFT_OFF_HELD, EV_RELOAD, FAIL_INCONSISTENT, M_N_LIFT_OFF,
                      M_T_SLIP_START, M_T_UNLOADED,
                      EV_IMPACT, EV_OVERTURN, EV_PASS_ALPHA, EV_SLIP,
                      EV_STICK, EV_UPLIFT, FLIGHT, M_IMPACTS, M_N_STICK_SLIP,
@@ -302,9 +302,10 @@ def lift(t, y, s, met, log, cnt):
 def lift_off(t, y, s, par, disc, met, log, cnt):
     """N reached 0 while rocking: stop (FLIGHT) or hold the pivot down and
     let the base slip without friction until N > 0 again (sigma = 0)."""
-    log_event(log, cnt, t, EV_FLIGHT, y[3], y[3], y[2], s)
     if par[Q_LIFT_OFF] != LIFT_OFF_HOLD:
+        log_event(log, cnt, t, EV_FLIGHT, y[3], y[3], y[2], s)
         return FLIGHT
+    log_event(log, cnt, t, EV_LIFT_OFF_HELD, y[3], y[3], y[2], s)
     met[M_N_LIFT_OFF] += 1
     set_mode(disc, MODE_SLIDE_ROCK, s, 0)
     return RUNNING
@@ -428,7 +429,7 @@ def reload(t, y, par, disc, hdr, smp, met, log, cnt):
     """N back to 0+ after a held lift-off: slip on if the base moves, else
     stick if admissible."""
     s = disc[D_PIVOT]
-    log_event(log, cnt, t, EV_CONTACT, y[3], y[3], y[2], s)
+    log_event(log, cnt, t, EV_RELOAD, y[3], y[3], y[2], s)
     if y[5] != 0.0:
         set_mode(disc, MODE_SLIDE_ROCK, s, 1 if y[5] > 0.0 else -1)
         return RUNNING

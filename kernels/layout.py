@@ -110,6 +110,8 @@ EV_SLIP = 11
 EV_STICK = 12
 EV_PEAK = 13
 EV_CONTACT = 14
+EV_LIFT_OFF_HELD = 15   # N reached 0, pivot held down (friction, lift_off='hold')
+EV_RELOAD = 16          # N > 0 again after a held lift-off
 
 # ---- excitation header (float64), one block per channel ---------------------
 X_KIND = 0

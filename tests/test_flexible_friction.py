@@ -421,3 +421,17 @@ def test_cli_spectrum_with_a_sliding_flexible_body(tmp_path):
     df = pd.read_csv(csv)
     assert len(df) == 9 and {"max_slide", "residual_slide", "lift_offs"} <= set(df.columns)
     assert png.stat().st_size > 0
+
+
+def test_held_lift_offs_are_named_and_counted():
+    b = body(mb=0.1)
+    held = fr.simulate(b, pulse(3.0, 3.0), friction=Friction(0.8, lift_off="hold"))
+    ev = held.events.event.tolist()
+    n = held.metrics["lift_offs"]
+    assert n >= 1 and ev.count("lift-off-held") == n and "flight" not in ev
+    assert held.metrics["time_unloaded"] > 0.0
+    stop = fr.simulate(b, pulse(3.0, 3.0), friction=Friction(0.8))
+    assert stop.outcome == "flight" and stop.events.event.iloc[-1] == "flight"
+    # the stopped run ends where the held one first lifted off
+    t_held = held.events.t[held.events.event == "lift-off-held"].iloc[0]
+    assert stop.events.t.iloc[-1] == pytest.approx(t_held, abs=1e-9)
