@@ -206,6 +206,31 @@ def run_level(effect, repeats):
                 same_outcome=r0.outcome == r2.outcome)
 
 
+# ---------------------------------------------------------------- 4. flexible body, friction off
+FLEX = fr.FlexibleBody(alpha=0.3, p=2.0, omega_n_over_p=9.0, zeta=0.05, base_mass_ratio=0.1)
+
+
+def flexible_spectrum(n, effect_kw=None):
+    amps, freqs = grid(n)
+    return fr.overturning_spectrum(FLEX, amps, freqs, sign=1, rtol=RTOL, t_after=T_AFTER, progress=False,
+                                   **(effect_kw or {}))
+
+
+def flexible_level(n, repeats):
+    """A flexible body (with a 0.1 m base) without friction against the same body with
+    ``Friction(inf)``: the same kernel (``flexible``, checked), the same statuses, and the time.
+    No inert version: a large finite mu is not inert for this body, it meets lift-off (N < 0)
+    and, at mu >~ 2, Painleve-type inconsistencies (README, flexible bodies with friction)."""
+    d0 = flexible_spectrum(n)
+    d1 = flexible_spectrum(n, {"friction": Friction(math.inf)})
+    assert d0.attrs["kernel"] == d1.attrs["kernel"] == "flexible"
+    assert list(d0["status"]) == list(d1["status"])
+    t = ratios.with_threads(1, lambda: interleaved([lambda: flexible_spectrum(n),
+                                                    lambda: flexible_spectrum(n, {"friction": Friction(math.inf)})],
+                                                   repeats))
+    return dict(plain=t[0], off=t[1], n_runs=n * n)
+
+
 # ---------------------------------------------------------------- report
 def report(n=100, n_kernel=40, repeats=7, run_repeats=30):
     load0 = ratios.loadavg()
@@ -231,6 +256,10 @@ def report(n=100, n_kernel=40, repeats=7, run_repeats=30):
               f"{f(r['plain'].cpu)}, off {f(r['off'].cpu)} (x{r['off'].cpu / r['plain'].cpu:.3f}), inert "
               f"{f(r['inert'].cpu)} (x{r['inert'].cpu / r['plain'].cpu:.3f}; {r['inert_status']})\n", flush=True)
         rows.append((effect, s, k, r))
+    fl = flexible_level(min(n, 40), repeats)
+    print(f"[flexible friction] {min(n, 40)}x{min(n, 40)} spectrum of a flexible body (omega_n/p = 9, "
+          f"m_b = 0.1 m): no friction {ratios.fmt_t(fl['plain'].cpu)}, Friction(inf) {ratios.fmt_t(fl['off'].cpu)} "
+          f"(x{fl['off'].cpu / fl['plain'].cpu:.3f}, same kernel and statuses)\n", flush=True)
     load1 = ratios.loadavg()
     print(f"load average at the end {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}\n")
     print(markdown(rows, n, load0, load1))
@@ -268,6 +297,13 @@ def test_effect_off_within_5_percent_of_plain_kernel(effect):
     print(f"\n{effect} off / plain (CPU, 1 thread): 100x100 spectrum {off_spec:.3f}, El Centro run {off_run:.3f}; "
           f"inert / plain run {r['inert'].cpu / r['plain'].cpu:.2f}")
     assert off_spec <= 1.05 and off_run <= 1.05
+
+
+def test_flexible_friction_off_within_5_percent():
+    fl = flexible_level(30, repeats=3)
+    ratio = fl["off"].cpu / fl["plain"].cpu
+    print(f"\nflexible Friction(inf) / no friction (CPU, 1 thread, 30x30 spectrum): {ratio:.3f}")
+    assert ratio <= 1.05
 
 
 @pytest.mark.parametrize("effect", list(EFFECTS))
