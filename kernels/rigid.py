@@ -21,9 +21,10 @@ from .hybrid import integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_FLIGHT, EV_IMPACT,
                      EV_OVERTURN, EV_PASS_ALPHA, EV_REST, EV_UPLIFT, EXC_NONE,
                      FLIGHT, M_IMPACTS, M_MAX_ABS_THETA, M_MAX_THETA_NEG,
-                     M_MAX_THETA_POS, M_T_EXC_END, M_T_LAST_IMPACT, M_T_OVER,
-                     M_T_PASS_ALPHA, M_T_UPLIFT, MODE_REST, MODE_ROCK, N_DISC,
-                     N_HDR, N_MET, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T, O_T0,
+                     M_MAX_THETA_POS, M_T_EXC_END, M_T_FINAL, M_T_LAST_IMPACT,
+                     M_T_OVER, M_T_PASS_ALPHA, M_T_UPLIFT, MODE_REST, MODE_ROCK,
+                     N_DISC, N_HDR, N_MET, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T,
+                     O_T0, O_T_END,
                      OVERTURN_MODE1, OVERTURN_MODE2, RUNNING, SAFE_BOUNDED,
                      SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST, X_KIND)
 
@@ -265,6 +266,109 @@ def bounded_after_excitation(theta, w, s, alpha, p, e):
 
 
 @jit
+def carlson_rf(x, y, z):
+    """Carlson's symmetric elliptic integral of the first kind R_F(x, y, z),
+    for x, y, z >= 0 with at most one zero: duplication theorem and the
+    fifth-order series (Carlson 1995, Numer. Algorithms 10, 13-26,
+    doi:10.1007/BF02198293); ERRTOL 0.0025 bounds the truncation error by
+    ERRTOL**6 / 4 < 1e-16 (relative)."""
+    mu = 1.0
+    dx = dy = dz = 0.0
+    for _ in range(64):
+        mu = (x + y + z) / 3.0
+        dx = 1.0 - x / mu
+        dy = 1.0 - y / mu
+        dz = 1.0 - z / mu
+        if max(abs(dx), abs(dy), abs(dz)) < 0.0025:
+            break
+        sx = math.sqrt(x)
+        sy = math.sqrt(y)
+        sz = math.sqrt(z)
+        lam = sx * (sy + sz) + sy * sz
+        x = 0.25 * (x + lam)
+        y = 0.25 * (y + lam)
+        z = 0.25 * (z + lam)
+    e2 = dx * dy - dz * dz
+    e3 = dx * dy * dz
+    return (1.0 + (e2 / 24.0 - 0.1 - 3.0 * e3 / 44.0) * e2 + e3 / 14.0) \
+        / math.sqrt(mu)
+
+
+@jit
+def outward_fall_integral(phi, c, beyond):
+    """Antiderivative of 1 / sqrt(c + sin(phi)^2), zero at the reference
+    point: phi = 0 (``beyond`` False; needs c > 0) or phi = pi/2 (``beyond``
+    True: phi in [0, pi/2], c > -1, c + sin(phi)^2 > 0).  Both are
+    incomplete elliptic integrals of the first kind in Carlson's form:
+    F(phi | m) = sin(phi) R_F(cos^2 phi, 1 - m sin^2 phi, 1)."""
+    if not beyond:
+        sp = math.sin(phi)
+        cp = math.cos(phi)
+        return sp * carlson_rf(c * cp * cp, c + sp * sp, c)
+    # psi = pi/2 - phi: sin(phi) = cos(psi)
+    sq = math.cos(phi)      # sin(psi)
+    cq = math.sin(phi)      # cos(psi)
+    return -sq * carlson_rf((1.0 + c) * cq * cq, c + cq * cq, 1.0 + c)
+
+
+@jit
+def overturns_after_excitation(theta, w, s, alpha, p, theta_over):
+    """Early overturning decision once the excitation is over (exact, the
+    counterpart of ``bounded_after_excitation``): a block rocking outward
+    (s theta' > 0) that is past alpha, or inside the well with energy above
+    the barrier 1 - cos(alpha), reaches theta_over without any impact: free
+    rocking conserves energy and the speed never vanishes on the way
+    (physics.md 1, overturning).
+
+    The fall is known in closed form.  With u = s theta - alpha and
+    c = (theta' / 2p)^2 - sin^2(u/2) = (E - (1 - cos alpha)) / 2 (E as in
+    free_energy), free rocking gives theta'^2 = 4 p^2 (c + sin^2(u/2)), so
+    the time from u0 to u1 is (1/p) int dphi / sqrt(c + sin^2 phi) over
+    phi = u/2, an elliptic integral (``outward_fall_integral``).
+    Returns (falls, c, time to reach alpha (NaN if past it already), time
+    to reach theta_over), the times from now."""
+    if not s * w > 0.0:
+        return False, 0.0, np.nan, np.nan
+    u0 = s * theta - alpha               # rotation past the unstable point
+    if not u0 < theta_over - alpha:
+        return False, 0.0, np.nan, np.nan
+    q = 0.5 * w / p
+    phi0 = 0.5 * u0
+    sh = math.sin(phi0)
+    c = q * q - sh * sh
+    beyond = phi0 >= 0.0
+    if not (beyond or c > 0.0):
+        return False, c, np.nan, np.nan
+    f0 = outward_fall_integral(phi0, c, beyond)
+    f1 = outward_fall_integral(0.5 * (theta_over - alpha), c, beyond)
+    dt_alpha = np.nan if beyond else -f0 / p     # the integral is 0 at alpha
+    return True, c, dt_alpha, (f1 - f0) / p
+
+
+@jit
+def fall_to_overturn(t, y, par, disc, met, log, cnt):
+    """Complete in closed form a run that after_step stopped at time t by
+    ``overturns_after_excitation``: log the first passage of alpha (if it is
+    still to come) and the overturning as the integrated run does, and leave
+    y and met[M_T_FINAL] at the overturning state."""
+    s = disc[D_PIVOT]
+    alpha = par[P_ALPHA]
+    p = par[P_P]
+    theta_over = par[P_THETA_OVER]
+    _falls, c, dt_alpha, dt_over = overturns_after_excitation(
+        y[0], y[1], s, alpha, p, theta_over)
+    if np.isfinite(dt_alpha):
+        y[0] = s * alpha
+        y[1] = s * 2.0 * p * math.sqrt(c)
+        observe(K_PASS_ALPHA, t + dt_alpha, y, disc, met, log, cnt)
+    sh = math.sin(0.5 * (theta_over - alpha))
+    y[0] = s * theta_over
+    y[1] = s * 2.0 * p * math.sqrt(c + sh * sh)
+    met[M_T_FINAL] = t + dt_over
+    overturned(t + dt_over, y, disc, met, log, cnt)
+
+
+@jit
 def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     # Every array entry is read here, before any branch: the arrays other
     # than met then die in the entry block, where their incref/decref pairs
@@ -276,7 +380,9 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     alpha = par[P_ALPHA]
     p = par[P_P]
     e = par[P_E]
+    theta_over = par[P_THETA_OVER]
     early = opt[O_EARLY_EXIT] != 0.0
+    t_end = opt[O_T_END]
     track_rotation(theta, met)
     if at_end:
         if mode == MODE_REST:
@@ -286,12 +392,20 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
         return SAFE_MOVING
     if not early or mode != MODE_ROCK or t < met[M_T_EXC_END]:
         return RUNNING
-    # free rocking from now on: the exact early decision
+    # free rocking from now on: the exact early decisions
     safe, pk1, pk2 = bounded_after_excitation(theta, w, s, alpha, p, e)
     if safe:
         track_rotation(pk1, met)
         track_rotation(pk2, met)
         return SAFE_BOUNDED
+    falls, _c, _dt_alpha, dt_over = overturns_after_excitation(
+        theta, w, s, alpha, p, theta_over)
+    if falls and t + dt_over <= t_end:
+        # run completes the fall in closed form (fall_to_overturn); one
+        # that would end after t_end is integrated on (safe:moving)
+        if met[M_IMPACTS] > 0:
+            return OVERTURN_MODE1
+        return OVERTURN_MODE2
     return RUNNING
 
 
@@ -326,10 +440,15 @@ def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
         cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     init_state(opt[O_T0], y, par, disc, hdr, smp, met)
-    return integrate_hybrid(rhs, event, transition, static_margin,
-                            after_step, N_EVENTS, y, par, disc, hdr, smp,
-                            opt, t_eval, met, hist_t, hist_y, hist_d, log,
-                            cnt)
+    status = integrate_hybrid(rhs, event, transition, static_margin,
+                              after_step, N_EVENTS, y, par, disc, hdr, smp,
+                              opt, t_eval, met, hist_t, hist_y, hist_d, log,
+                              cnt)
+    if (status == OVERTURN_MODE1 or status == OVERTURN_MODE2) and \
+            np.isnan(met[M_T_OVER]):
+        # decided early by after_step: the fall is known in closed form
+        fall_to_overturn(met[M_T_FINAL], y, par, disc, met, log, cnt)
+    return status
 
 
 # ---------------------------------------------------------------- entries
