@@ -35,6 +35,8 @@ theta_end, theta_dot_end  state when the run stopped          [rad, rad/s]
 nfev                right-hand-side evaluations
 max_slide, residual_slide  max |d| and final d (with friction)  [m]
 time_sliding, time_slide_rocking, stick_slip  (with friction)
+lift_offs, time_unloaded  held lift-offs and their time (flexible body with friction)  [-, s]
+boundary            outcome changes when the tolerance is halved (boundary_check=True)
 """
 
 
@@ -59,7 +61,7 @@ def _signs(sign):
 
 def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, pulse="one-sine",
                          wall=None, friction=None, solver=None, rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
-                         early_exit=True, chunk_size=None, progress=True):
+                         early_exit=True, chunk_size=None, progress=True, boundary_check=False):
     """Overturning spectrum of a body under pulses, in parallel.
 
     Parameters
@@ -81,6 +83,11 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     progress : bool
         Progress bar on stderr for long sweeps.  Ctrl-C returns the finished
         rows (``df.attrs["interrupted"]`` is True).
+    boundary_check : bool
+        Run the grid a second time with the tolerance (or the fixed step)
+        halved and add the column ``boundary``: True where the outcome
+        changes, i.e. the cell sits on an outcome boundary closer than the
+        integration error can resolve (about twice the cost).
 
     Returns
     -------
@@ -125,6 +132,18 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     df = df.iloc[:done].reset_index(drop=True)
     df.attrs.update(interrupted=done < n, kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e,
                     pulse=pulse, solver=solver.name)
+    if boundary_check:
+        import dataclasses
+        half = (dataclasses.replace(solver, dt=solver.dt / 2) if solver.dt else
+                dataclasses.replace(solver, rtol=solver.rtol / 2,
+                                    atol=(solver.atol if solver.atol is not None else solver.rtol * 1e-2) / 2))
+        df2 = overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign, pulse=pulse, wall=wall,
+                                   friction=friction, solver=half, t_after=t_after, early_exit=early_exit,
+                                   chunk_size=chunk_size, progress=progress)
+        m = min(len(df), len(df2))
+        df = df.iloc[:m].copy()
+        df["boundary"] = df["outcome"].to_numpy() != df2["outcome"].to_numpy()[:m]
+        df.attrs["interrupted"] = df.attrs["interrupted"] or df2.attrs["interrupted"]
     return df
 
 
