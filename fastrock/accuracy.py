@@ -19,7 +19,12 @@ measures, against a much tighter reference (rtol 1e-13):
 Families (``FAMILIES``): the rigid block; the flexible body; the rigid block against a rear
 wall (the safe case is thrown away from the wall and hits it on the way back, the grid has both
 pulse signs); the rigid block with Coulomb friction (mu_s just above b/h: rocking, slide-rocking
-and slip at impacts; its safe cases slide).
+and slip at impacts; its safe cases slide); the flexible foundation ("foundation": the
+two-spring model, free release only: a block on felt released from an initial lean; its safe
+case measures ``err_max_rotation`` on the first rebound peak, max|theta|/alpha after the first
+zero crossing, since the release angle itself is exact, and ``err_half_cycles`` [s], the largest
+error in the first ten half-cycle durations; the grid is a set of release angles); the flexible
+body with friction ("flexible-friction": mu_s = 0.5, lift_off="hold"; its safe pulse case slides).
 """
 from __future__ import annotations
 
@@ -33,7 +38,15 @@ DTS = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5)
 REFERENCE_RTOL = 1e-13
 
 
-FAMILIES = ("rigid", "flexible", "wall", "friction")
+FAMILIES = ("rigid", "flexible", "wall", "friction", "foundation", "flexible-friction")
+#: families with their own excitation: the foundation runs free releases only
+FREE_FAMILIES = ("foundation",)
+# foundation family: release angles / alpha of the safe and overturning case and of the grid,
+# run length [s], and how many half-cycle durations are compared
+FOUNDATION_RELEASES = (0.5, 1.02)
+FOUNDATION_GRID = tuple(np.linspace(0.2, 1.15, 16))
+FOUNDATION_DURATION = 8.0
+FOUNDATION_HALF_CYCLES = 10
 
 
 def _family(model):
@@ -54,6 +67,17 @@ def _family(model):
         # slips at impacts; the pulse grid has safe, slide, mode-1 and mode-2 cells
         from .friction import Friction
         return RigidBlock.rectangle(b=0.25, h=1.0), {"friction": Friction(0.27)}
+    if model == "foundation":
+        # the README's block on felt: b = 0.1 m, h = 0.5 m on corner springs with rocking
+        # vibration omega = 30 rad/s, zeta = 0.1 (mass 1 kg; only omega and zeta matter)
+        from .foundation import TwoSpringFoundation
+        body = RigidBlock.rectangle(b=0.1, h=0.5)
+        return body, {"foundation": TwoSpringFoundation.from_vibration(body, 30.0, 0.1)}
+    if model == "flexible-friction":
+        # mu_s = 0.5 > tan(alpha) = 0.31: rocks, slips at impacts; lift-off held
+        from .friction import Friction
+        return (FlexibleBody(alpha=0.3, p=2.0, omega_n_over_p=9.0, zeta=0.05, base_mass_ratio=0.1),
+                {"friction": Friction(0.5, lift_off="hold")})
     raise ValueError(f"model must be one of {', '.join(FAMILIES)}, got {model!r}")
 
 
@@ -68,9 +92,12 @@ _DEFAULT_RECORD_CASES = (1.5, 6.0)
 
 
 def _cases(body, excitation, model="rigid"):
-    """(safe case, overturning case, grid) for one excitation kind."""
+    """(safe case, overturning case, grid) for one excitation kind ("free": release angles [rad])."""
     from .excitation import Pulse, SampledMotion
     from .records import load_default_record
+    if excitation == "free":
+        return (FOUNDATION_RELEASES[0] * body.alpha, FOUNDATION_RELEASES[1] * body.alpha,
+                [k * body.alpha for k in FOUNDATION_GRID])
     if excitation == "pulse":
         def pulse(a, f, sign=1):
             return Pulse(a, f, sign=sign, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
@@ -86,7 +113,7 @@ def _cases(body, excitation, model="rigid"):
         over = SampledMotion.from_record(rec, scale=k_over * scale_up)
         grid = [SampledMotion.from_record(rec, scale=s * scale_up) for s in np.linspace(1.1, 8.0, 24)]
         return safe, over, grid
-    raise ValueError(f"excitation must be 'pulse' or 'record', got {excitation!r}")
+    raise ValueError(f"excitation must be 'pulse', 'record' or 'free', got {excitation!r}")
 
 
 def _grid_rows(body, grid, solver, t_after, effects=None):
@@ -128,6 +155,8 @@ def _run_set(body, safe, over, grid, solver, t_after, repeats=3, effects=None, t
     from .sweep import run_sweep
     from fastrock.kernels import layout as L
     effects = effects or {}
+    if "foundation" in effects:
+        return _run_set_foundation(body, effects["foundation"], safe, over, grid, solver, repeats, threads)
     r_safe = simulate(body, safe, solver=solver, t_after=t_after, history_capacity=10, **effects)
     r_over = simulate(body, over, solver=solver, t_after=t_after, history_capacity=10, **effects)
     spec, Y0, PAR, HDR, smp, OPT = _grid_rows(body, grid, solver, t_after, effects)
@@ -144,7 +173,7 @@ def _run_set(body, safe, over, grid, solver, t_after, repeats=3, effects=None, t
                outcomes=outcomes, time_per_run=best / len(grid), cpu_per_run=best_cpu / len(grid),
                nfev=float(np.mean(MET[:, L.M_NFEV])))
     friction = effects.get("friction")
-    if spec.name == "rigid_friction":
+    if spec.friction:
         # as simulate does it: a safe run that slipped by more than the tolerance is a "slide"
         res = MET[:, L.M_RESIDUAL_SLIDE]
         out["outcomes"] = ["slide" if o == "safe" and abs(d) > friction.slide_tolerance else o
@@ -155,6 +184,47 @@ def _run_set(body, safe, over, grid, solver, t_after, repeats=3, effects=None, t
     return out
 
 
+def _foundation_peaks(result, alpha):
+    """(max |theta|/alpha after the first zero crossing, first half-cycle durations [s])."""
+    from .foundation import foundation_half_cycles
+    hc = foundation_half_cycles(result)
+    peaks = np.abs(hc["peak_angle"].to_numpy(float)[1:])
+    return (float(peaks.max()) / alpha if peaks.size else np.nan,
+            hc["duration"].to_numpy(float)[:FOUNDATION_HALF_CYCLES])
+
+
+def _run_set_foundation(body, fnd, safe, over, grid, solver, repeats=3, threads=None):
+    """:func:`_run_set` for a foundation: free releases from the angles ``safe``, ``over`` and
+    ``grid`` [rad] over FOUNDATION_DURATION; the grid runs through the foundation's sweep kernel."""
+    from .foundation import foundation_spec, simulate_foundation
+    from .outcomes import outcome_of
+    from .sweep import run_sweep
+    from . import excitation as X
+    from fastrock.kernels import layout as L
+    kw = dict(duration=FOUNDATION_DURATION, solver=solver, allow_overturn=True)
+    r_safe = simulate_foundation(body, fnd, theta0=safe, **kw)
+    r_over = simulate_foundation(body, fnd, theta0=over, **kw)
+    peak, durations = _foundation_peaks(r_safe, body.alpha)
+    spec, blk = foundation_spec(body, fnd)
+    n = len(grid)
+    hdr, smp = X.to_header(body, None)
+    HDR = np.tile(hdr, (n, 1))
+    OPT = np.tile(solver.options(FOUNDATION_DURATION, False), (n, 1))
+    Y0 = np.array([fnd.initial_state(blk, th, 0.0) for th in grid])
+    PAR = np.tile(spec.par, (n, 1))
+    best = best_cpu = np.inf
+    with _threads(threads):
+        for _ in range(repeats):
+            t0, c0 = time.perf_counter(), time.process_time()
+            status, MET, _, _ = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, progress=False)
+            best = min(best, time.perf_counter() - t0)
+            best_cpu = min(best_cpu, time.process_time() - c0)
+    return dict(max_rotation=peak, half_cycles=durations, safe_status=r_safe.status,
+                t_overturn=r_over.metrics["time_overturn"], over_status=r_over.status,
+                outcomes=[outcome_of(c) for c in status], time_per_run=best / n, cpu_per_run=best_cpu / n,
+                nfev=float(np.mean(MET[:, L.M_NFEV])))
+
+
 def work_precision(models=("rigid", "flexible"), excitations=("pulse", "record"), rtols=RTOLS, dts=DTS,
                    t_after=5.0, record_breakpoints=(True, False), progress=True, grid=None, threads=None):
     """Error against run time for each model family, excitation and setting.
@@ -162,7 +232,8 @@ def work_precision(models=("rigid", "flexible"), excitations=("pulse", "record")
     Returns a DataFrame with columns model, excitation, mode ("rtol" /
     "dt"), setting, record_breakpoints, time_per_run [s], nfev,
     err_max_rotation [-], err_t_overturn [s], outcome_mismatch [-], status,
-    and for the friction family err_max_slide, err_residual_slide [m].
+    and for the friction families err_max_slide, err_residual_slide [m], for the
+    foundation err_half_cycles [s] (its excitation is always "free": release angles).
     ``grid``: keep only this many runs of each spectrum grid (evenly spaced;
     for quick checks).  ``threads``: Numba threads of the timed sweeps (None:
     all; recorded in the ``threads`` column, 0 meaning all).
@@ -171,7 +242,7 @@ def work_precision(models=("rigid", "flexible"), excitations=("pulse", "record")
     rows = []
     for model in models:
         body, effects = _family(model)
-        for excitation in excitations:
+        for excitation in (("free",) if model in FREE_FAMILIES else excitations):
             safe, over, cells = _cases(body, excitation, model)
             if grid is not None and grid < len(cells):
                 cells = [cells[i] for i in np.linspace(0, len(cells) - 1, max(int(grid), 1)).astype(int)]
@@ -193,6 +264,11 @@ def work_precision(models=("rigid", "flexible"), excitations=("pulse", "record")
                                err_t_overturn=abs(res["t_overturn"] - ref["t_overturn"]),
                                outcome_mismatch=mism,
                                status=f"{res['safe_status']}/{res['over_status']}")
+                    if "half_cycles" in res:
+                        a, b = res["half_cycles"], ref["half_cycles"]
+                        m = min(a.size, b.size)
+                        row["err_half_cycles"] = float(np.max(np.abs(a[:m] - b[:m]))) if m else np.nan
+                        row["half_cycles_compared"] = m
                     if "max_slide" in res:
                         row["err_max_slide"] = abs(res["max_slide"] - ref["max_slide"])
                         row["err_residual_slide"] = abs(res["residual_slide"] - ref["residual_slide"])
@@ -213,16 +289,20 @@ MEASURE_LABELS = {
     "outcome_mismatch": "share of grid outcomes changed",
     "err_max_slide": "error in max|d| [m]",
     "err_residual_slide": "error in residual slide [m]",
+    "err_half_cycles": "error in half-cycle durations [s]",
 }
 CLOCKS = {"wall": ("time_per_run", "time per run [s]"),
           "cpu": ("cpu_per_run", "CPU time per run [s]")}
 
 
 def default_measures(df):
-    """err_max_rotation, and the residual-slide error when the table has a friction family."""
-    if "err_residual_slide" in df and df["err_residual_slide"].notna().any():
-        return ("err_max_rotation", "err_residual_slide")
-    return ("err_max_rotation",)
+    """err_max_rotation, plus the residual-slide error when the table has a friction family and
+    the half-cycle error when it has the foundation."""
+    out = ("err_max_rotation",)
+    for extra in ("err_residual_slide", "err_half_cycles"):
+        if extra in df and df[extra].notna().any():
+            out += (extra,)
+    return out
 
 
 def plot_work_precision(df, measure=None, clock="wall"):
@@ -270,7 +350,8 @@ def add_subcommand(sub):
     p = sub.add_parser("accuracy", help="work-precision: error against run time (PNG + CSV)")
     p.add_argument("--models", default=",".join(FAMILIES),
                    help=f"comma-separated model families: {', '.join(FAMILIES)} (default: all)")
-    p.add_argument("--excitations", default="pulse,record")
+    p.add_argument("--excitations", default="pulse,record",
+                   help="pulse and/or record (the foundation family always runs free releases)")
     p.add_argument("--quick", action="store_true", help="fewer settings (rtol 1e-3..1e-10, dt 1e-2..1e-4)")
     p.add_argument("--rtols", default=None, help="comma-separated rtol values (overrides --quick)")
     p.add_argument("--dts", default=None, help="comma-separated fixed steps [s] (overrides --quick)")
@@ -279,7 +360,7 @@ def add_subcommand(sub):
     p.add_argument("--t-after", type=float, default=5.0, help="seconds simulated after the excitation (5)")
     p.add_argument("--measures", default=None,
                    help="comma-separated error columns to plot, one row each (default: err_max_rotation, "
-                        "plus err_residual_slide with friction)")
+                        "plus err_residual_slide with friction, err_half_cycles with the foundation)")
     p.add_argument("--clock", choices=tuple(CLOCKS), default="wall",
                    help="x axis: wall time per run (default) or CPU time per run (steadier on a busy machine)")
     p.add_argument("--threads", type=int, default=None,

@@ -14,13 +14,18 @@ from fastrock import accuracy as A
 from fastrock import models
 from fastrock.cli import main
 
-KERNEL = {"rigid": "rigid", "flexible": "flexible", "wall": "rigid_wall", "friction": "rigid_friction"}
+KERNEL = {"rigid": "rigid", "flexible": "flexible", "wall": "rigid_wall", "friction": "rigid_friction",
+          "foundation": "two_spring", "flexible-friction": "flexible_friction"}
 
 
 @pytest.mark.parametrize("model", A.FAMILIES)
 def test_family_selects_its_kernel(model):
     body, effects = A._family(model)
-    assert models.select(body, **effects).name == KERNEL[model]
+    if "foundation" in effects:
+        from fastrock.foundation import foundation_spec
+        assert foundation_spec(body, effects["foundation"])[0].name == KERNEL[model]
+    else:
+        assert models.select(body, **effects).name == KERNEL[model]
 
 
 def test_wall_and_friction_cases_exercise_the_effect():
@@ -137,3 +142,42 @@ def test_cli_accuracy_bad_options(args, msg, capsys, tmp_path):
     assert main(["accuracy", *args, "--csv", str(csv), "--png", str(tmp_path / "x.png")]) == 2
     assert msg in capsys.readouterr().err
     assert not csv.exists()
+
+
+def test_work_precision_foundation_small():
+    """Free releases of the two-spring block: the safe case rocks and comes to rest, the release
+    beyond alpha overturns, and the rebound peak and half-cycle errors fall with rtol."""
+    df = A.work_precision(("foundation",), ("pulse", "record"), rtols=(1e-3, 1e-8), dts=(1e-2,), grid=4,
+                          threads=1, progress=False)
+    assert list(df["excitation"]) == ["free"] * 3 and list(df["mode"]) == ["rtol", "rtol", "dt"]
+    assert (df["status"] == "safe:rest/overturn:mode2").all() and (df["half_cycles_compared"] == 10).all()
+    assert df["outcome_mismatch"].between(0, 1).all()
+    r = df[df["mode"] == "rtol"].set_index("setting")
+    # measured 5e-5 -> 2e-9 (peak) and 1e-4 -> 6e-10 s (half-cycles)
+    for col in ("err_max_rotation", "err_half_cycles", "err_t_overturn"):
+        assert r.loc[1e-8, col] < 1e-2 * r.loc[1e-3, col]
+    assert A.default_measures(df) == ("err_max_rotation", "err_half_cycles")
+
+
+def test_work_precision_flexible_friction_small():
+    """The flexible body with friction: the safe pulse case slides (held lift-off), the other
+    overturns; rotation and slide errors fall with rtol."""
+    df = A.work_precision(("flexible-friction",), ("pulse",), rtols=(1e-3, 1e-8), dts=(1e-2,), grid=2,
+                          threads=1, progress=False)
+    assert (df["model"] == "flexible-friction").all() and len(df) == 3
+    assert df["status"].str.match(r"slide:.*/overturn:mode[12]").all()
+    r = df[df["mode"] == "rtol"].set_index("setting")
+    # measured 3e-5 -> 3e-10 (rotation) and 7e-6 -> 2e-10 m (max slide)
+    for col in ("err_max_rotation", "err_max_slide"):
+        assert r.loc[1e-8, col] < 1e-2 * r.loc[1e-3, col]
+
+
+def test_cli_accuracy_foundation(tmp_path):
+    """--models foundation runs free releases whatever --excitations says, and plots the
+    half-cycle error by default."""
+    csv, png = tmp_path / "wp.csv", tmp_path / "wp.png"
+    code = main(["accuracy", "--models", "foundation", "--rtols", "1e-4", "--dts", "1e-2", "--grid", "2",
+                 "--clock", "cpu", "--threads", "1", "--csv", str(csv), "--png", str(png)])
+    assert code == 0 and png.stat().st_size > 0
+    df = pd.read_csv(csv)
+    assert list(df["excitation"]) == ["free", "free"] and df["err_half_cycles"].notna().all()
