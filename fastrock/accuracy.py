@@ -337,7 +337,7 @@ def plot_work_precision(df, measure=None, clock="wall"):
                 continue
             for (mode, bp), g in sub.groupby(["mode", "record_breakpoints"]):
                 lab = ("adaptive rtol" if mode == "rtol" else "fixed dt") + (
-                    "" if exc == "pulse" else (" (breakpoints)" if bp else " (no bp)"))
+                    "" if exc in ("pulse", "free") else (" (breakpoints)" if bp else " (no bp)"))
                 err = np.maximum(g[meas].to_numpy(dtype=float), 1e-16)
                 ax.loglog(g[tcol], err, "o-" if mode == "rtol" else "s--", label=lab, ms=4)
                 for x, y, v in zip(g[tcol], err, g["setting"]):
