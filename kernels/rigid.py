@@ -22,11 +22,11 @@ from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_FLIGHT, EV_IMPACT,
                      EV_OVERTURN, EV_PASS_ALPHA, EV_REST, EV_UPLIFT, EXC_NONE,
                      FLIGHT, M_IMPACTS, M_MAX_ABS_THETA, M_MAX_THETA_NEG,
                      M_MAX_THETA_POS, M_T_EXC_END, M_T_FINAL, M_T_LAST_IMPACT,
-                     M_T_OVER, M_T_PASS_ALPHA, M_T_UPLIFT, MODE_REST, MODE_ROCK,
-                     N_DISC, N_HDR, N_MET, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T,
-                     O_T0, O_T_END,
-                     OVERTURN_MODE1, OVERTURN_MODE2, RUNNING, SAFE_BOUNDED,
-                     SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST, X_KIND)
+                     M_T_OVER, M_T_PASS_ALPHA, M_T_UPLIFT, MODE_REST,
+                     MODE_ROCK, N_DISC, N_HDR, N_MET, O_EARLY_EXIT,
+                     O_EPS_OMEGA, O_EPS_T, O_T0, O_T_END, OVERTURN_MODE1,
+                     OVERTURN_MODE2, RUNNING, SAFE_BOUNDED, SAFE_MOVING,
+                     SAFE_NO_UPLIFT, SAFE_REST, X_KIND)
 
 P_ALPHA = 0
 P_P = 1
