@@ -18,16 +18,14 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import excitation_end, ground, ground_rates
-from .hybrid import integrate_hybrid, log_event, sweep_rows
-from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_CONTACT, EV_FLIGHT,
-                     EV_IMPACT, EV_OVERTURN, EV_PASS_ALPHA, EV_UPLIFT, FLIGHT,
-                     M_ENERGY_GAINS, M_IMPACTS, M_MAX_U, M_MIN_U, M_T_CONTACT,
-                     M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA, M_T_PREV,
-                     M_T_ROCK, M_T_UPLIFT, MODE_REST, MODE_ROCK, N_DISC,
-                     N_MET, O_EARLY_EXIT, O_EPS_OMEGA, O_T0, OVERTURN_MODE1,
-                     OVERTURN_MODE2, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT,
+from .hybrid import init_metrics, integrate_hybrid, log_event, sweep_rows
+from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
+                     EV_UPLIFT, FLIGHT, M_ENERGY_GAINS, M_IMPACTS, M_MAX_U,
+                     M_MIN_U, M_T_CONTACT, M_T_LAST_IMPACT, M_T_PREV, M_T_ROCK,
+                     M_T_UPLIFT, MODE_REST, MODE_ROCK, N_DISC, O_EARLY_EXIT,
+                     O_EPS_OMEGA, O_T0, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT,
                      SAFE_REST)
-from .rigid import track_rotation
+from .rigid import initial_pivot, overturned, passed_alpha, track_rotation
 
 F_ALPHA = 0
 F_P = 1
@@ -266,19 +264,12 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return contact_or_uplift(t, y, par, disc, hdr, smp, met, log, cnt)
     if k == 1:
         book_time(t, disc, met)
-        met[M_T_OVER] = t
-        track_rotation(y[2], met)
-        log_event(log, cnt, t, EV_OVERTURN, y[3], y[3], y[2], s)
-        if met[M_IMPACTS] > 0:
-            return OVERTURN_MODE1
-        return OVERTURN_MODE2
+        return overturned(t, y[2], y[3], s, met, log, cnt)
     if k == 2:
         track_rotation(y[2], met)
         return RUNNING
     if k == 3:
-        if np.isnan(met[M_T_PASS_ALPHA]):
-            met[M_T_PASS_ALPHA] = t
-            log_event(log, cnt, t, EV_PASS_ALPHA, y[3], y[3], y[2], s)
+        passed_alpha(t, y[2], y[3], s, met, log, cnt)
         return RUNNING
     if k == 4 or k == 5:
         track_u(y[0], met)
@@ -288,19 +279,26 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
 
 
 @jit
+def free_column_bound(y, par):
+    """(U, f): bounds on |u| and on the column force |w^2 u + 2 zeta w u'|
+    for all later free motion in full contact.  The oscillator energy
+    E = u'^2/2 + w^2 u^2/2 never grows (zeta >= 0), so |u| <= sqrt(2E)/w
+    and |u'| <= sqrt(2E)."""
+    wn = par[F_WN]
+    V = math.sqrt(y[1] * y[1] + wn * wn * y[0] * y[0])
+    U = V / wn
+    return U, wn * wn * U + 2.0 * par[F_ZETA] * wn * V
+
+
+@jit
 def never_uplifts_again(t, y, par, hdr):
-    """Exact sufficient test in full contact after the excitation: the
-    oscillator energy E = u'^2/2 + w^2 u^2/2 never grows (zeta >= 0), so
-    |u| <= sqrt(2E)/w and |u'| <= sqrt(2E); if even those extremes cannot
-    meet the uplift test of 3.3 the body stays in contact for good."""
+    """Exact sufficient test in full contact after the excitation: if even
+    the bounds of ``free_column_bound`` cannot meet the uplift test of 3.3,
+    the body stays in contact for good."""
     if t < excitation_end(hdr):
         return False
-    wn = par[F_WN]
-    E = 0.5 * y[1] * y[1] + 0.5 * wn * wn * y[0] * y[0]
-    U = math.sqrt(2.0 * E) / wn
-    V = math.sqrt(2.0 * E)
-    return par[F_H] * (wn * wn * U + 2.0 * par[F_ZETA] * wn * V) < \
-        par[F_G] * (par[F_B] * (1.0 + par[F_MB]) - U)
+    U, fmax = free_column_bound(y, par)
+    return par[F_H] * fmax < par[F_G] * (par[F_B] * (1.0 + par[F_MB]) - U)
 
 
 @jit
@@ -325,23 +323,13 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
 
 @jit
 def init_state(t0, y, par, disc, met):
-    for i in range(N_MET):
-        met[i] = 0.0
-    met[M_T_UPLIFT] = np.nan
-    met[M_T_OVER] = np.nan
-    met[M_T_PASS_ALPHA] = np.nan
-    met[M_T_LAST_IMPACT] = -np.inf
-    met[M_T_PREV] = t0
+    init_metrics(t0, met)
     for i in range(N_DISC):
         disc[i] = 0
-    disc[D_STATIC] = 0
     disc[D_PIVOT] = 1
     if y[2] != 0.0 or y[3] != 0.0:
         disc[D_MODE] = MODE_ROCK
-        if y[2] != 0.0:
-            disc[D_PIVOT] = 1 if y[2] > 0.0 else -1
-        else:
-            disc[D_PIVOT] = 1 if y[3] > 0.0 else -1
+        disc[D_PIVOT] = initial_pivot(y[2], y[3])
         met[M_T_UPLIFT] = t0
         track_rotation(y[2], met)
     else:

@@ -35,24 +35,22 @@ import math
 import numpy as np
 
 from .config import jit, jit_parallel
-from .excitation import excitation_end, ground, ground_rates
+from .excitation import ground, ground_rates
 from .flexible import (F_ALPHA, F_B, F_G, F_H, F_HB, F_MB, F_THETA_OVER, F_WN,
-                       F_ZETA, base_inertia, positions, track_u,
-                       uplift_margin)
-from .friction import track_slide
+                       F_ZETA, base_inertia, free_column_bound, never_uplifts_again,
+                       positions, track_u, uplift_margin)
+from .friction import initial_contact, track_slide
 from .hybrid import integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
-                     EV_LIFT_OFF_HELD, EV_RELOAD, FAIL_INCONSISTENT, M_N_LIFT_OFF,
-                     M_T_SLIP_START, M_T_UNLOADED,
-                     EV_IMPACT, EV_OVERTURN, EV_PASS_ALPHA, EV_SLIP,
-                     EV_STICK, EV_UPLIFT, FLIGHT, M_IMPACTS, M_N_STICK_SLIP,
-                     M_T_CONTACT, M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA,
-                     M_T_PREV, M_T_ROCK, M_T_SLIDE, M_T_SLIDE_ROCK,
-                     M_T_UPLIFT, MODE_REST, MODE_ROCK, MODE_SLIDE,
-                     MODE_SLIDE_ROCK, N_DISC, N_MET, O_EARLY_EXIT, O_T0,
-                     OVERTURN_MODE1, OVERTURN_MODE2, RUNNING, SAFE_MOVING,
-                     SAFE_NO_UPLIFT, SAFE_REST)
-from .rigid import UPLIFT_RTOL, track_rotation
+                     EV_LIFT_OFF_HELD, EV_RELOAD, FAIL_INCONSISTENT,
+                     M_N_LIFT_OFF, M_T_SLIP_START, M_T_UNLOADED, EV_IMPACT,
+                     EV_SLIP, EV_STICK, EV_UPLIFT, FLIGHT, M_IMPACTS,
+                     M_N_STICK_SLIP, M_T_CONTACT, M_T_LAST_IMPACT, M_T_PREV,
+                     M_T_ROCK, M_T_SLIDE, M_T_SLIDE_ROCK, M_T_UPLIFT,
+                     MODE_REST, MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK, N_DISC,
+                     O_EARLY_EXIT, O_T0, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT,
+                     SAFE_REST)
+from .rigid import UPLIFT_RTOL, overturned, passed_alpha, track_rotation
 
 Q_MU_S = 14
 Q_MU_K = 15
@@ -496,9 +494,7 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         track_rotation(y[2], met)
         return RUNNING
     if k == 5:
-        if np.isnan(met[M_T_PASS_ALPHA]):
-            met[M_T_PASS_ALPHA] = t
-            log_event(log, cnt, t, EV_PASS_ALPHA, y[3], y[3], y[2], s)
+        passed_alpha(t, y[2], y[3], s, met, log, cnt)
         return RUNNING
     if k == 6 or k == 7:
         track_u(y[0], met)
@@ -517,31 +513,19 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
                                    log, cnt)
         return stick(t, y, par, disc, hdr, smp, met, log, cnt)
     if k == 1:
-        met[M_T_OVER] = t
-        track_rotation(y[2], met)
-        log_event(log, cnt, t, EV_OVERTURN, y[3], y[3], y[2], s)
-        if met[M_IMPACTS] > 0:
-            return OVERTURN_MODE1
-        return OVERTURN_MODE2
+        return overturned(t, y[2], y[3], s, met, log, cnt)
     return impact(t, y, par, disc, hdr, smp, met, log, cnt)
 
 
 @jit
 def settled_for_good(t, y, par, hdr):
     """Exact sufficient test in full contact without slip after the
-    excitation: the column energy never grows, so |u| <= sqrt(2E)/w and
-    |u'| <= sqrt(2E) bound both the uplift test (3.3) and the friction force
-    the column can demand (4.4)."""
-    if t < excitation_end(hdr):
+    excitation: the column can neither lift the base (3.3) nor demand more
+    friction than mu_s N (4.4) in any later free motion."""
+    if not never_uplifts_again(t, y, par, hdr):
         return False
-    wn = par[F_WN]
-    E = 0.5 * y[1] * y[1] + 0.5 * wn * wn * y[0] * y[0]
-    U = math.sqrt(2.0 * E) / wn
-    fmax = wn * wn * U + 2.0 * par[F_ZETA] * wn * math.sqrt(2.0 * E)
-    mb = par[F_MB]
-    G = par[F_G]
-    return (par[F_H] * fmax < G * (par[F_B] * (1.0 + mb) - U)
-            and fmax < par[Q_MU_S] * (1.0 + mb) * G)
+    _U, fmax = free_column_bound(y, par)
+    return fmax < par[Q_MU_S] * (1.0 + par[F_MB]) * par[F_G]
 
 
 @jit
@@ -564,28 +548,7 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
 
 @jit
 def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
-    for i in range(N_MET):
-        met[i] = 0.0
-    met[M_T_UPLIFT] = np.nan
-    met[M_T_OVER] = np.nan
-    met[M_T_PASS_ALPHA] = np.nan
-    met[M_T_LAST_IMPACT] = -np.inf
-    met[M_T_PREV] = t0
-    for i in range(N_DISC):
-        disc[i] = 0
-    sigma = 1 if y[5] > 0.0 else -1
-    if y[2] != 0.0 or y[3] != 0.0:
-        s = 1 if (y[2] > 0.0 or (y[2] == 0.0 and y[3] > 0.0)) else -1
-        if y[5] != 0.0:
-            set_mode(disc, MODE_SLIDE_ROCK, s, sigma)
-        else:
-            set_mode(disc, MODE_ROCK, s, 0)
-        met[M_T_UPLIFT] = t0
-        track_rotation(y[2], met)
-    elif y[5] != 0.0:
-        set_mode(disc, MODE_SLIDE, 1, sigma)
-    else:
-        set_mode(disc, MODE_REST, 1, 0)
+    initial_contact(t0, y[2], y[3], y[5], False, disc, met)
     track_slide(y[4], met)
     track_u(y[0], met)
 

@@ -59,15 +59,14 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import integrate_hybrid, log_event, sweep_rows
-from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_CONTACT, EV_FLIGHT,
-                     EV_IMPACT, EV_PASS_ALPHA, EV_UPLIFT, FLIGHT, M_IMPACTS,
-                     M_T_CONTACT, M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA,
-                     M_T_PREV, M_T_ROCK, M_T_UPLIFT, MODE_FLIGHT, MODE_REST,
-                     MODE_ROCK, N_DISC, N_MET, O_T0, RUNNING, SAFE_MOVING,
-                     SAFE_NO_UPLIFT, SAFE_REST)
+from .hybrid import init_metrics, integrate_hybrid, log_event, sweep_rows
+from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
+                     EV_UPLIFT, FLIGHT, M_IMPACTS, M_T_CONTACT,
+                     M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_PREV, M_T_ROCK,
+                     M_T_UPLIFT, MODE_FLIGHT, MODE_REST, MODE_ROCK, N_DISC,
+                     O_T0, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
 from .rigid import (N_PAR as N_RIGID_PAR, P_ALPHA, P_G, P_P, P_THETA_OVER,
-                    overturned, theta_ddot, track_rotation)
+                    overturned, passed_alpha, theta_ddot, track_rotation)
 
 # ---- parameter layout (rigid entries 0..N_RIGID_PAR-1 first) ---------------
 P_MASS = N_RIGID_PAR + 0    # kg
@@ -141,21 +140,8 @@ def observe_rotation(obs, t, theta, dtheta, disc, par, met, log, cnt):
     """Observers: obs 0 = peak (exact maximum), 1 = first |theta| > alpha."""
     if obs == 0:
         track_rotation(theta, met)
-    elif np.isnan(met[M_T_PASS_ALPHA]):
-        met[M_T_PASS_ALPHA] = t
-        log_event(log, cnt, t, EV_PASS_ALPHA, dtheta, dtheta, theta,
-                  disc[D_PIVOT])
-
-
-@jit
-def init_metrics(t0, met):
-    for i in range(N_MET):
-        met[i] = 0.0
-    met[M_T_UPLIFT] = np.nan
-    met[M_T_OVER] = np.nan
-    met[M_T_PASS_ALPHA] = np.nan
-    met[M_T_LAST_IMPACT] = -np.inf
-    met[M_T_PREV] = t0
+    else:
+        passed_alpha(t, theta, dtheta, disc[D_PIVOT], met, log, cnt)
 
 
 @jit
@@ -335,7 +321,7 @@ def ts_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         cross_transition(y, 2, disc)
         return RUNNING
     if k == TS_OVERTURN:
-        return overturned(t, y[2:], disc, met, log, cnt)
+        return overturned(t, y[2], y[3], disc[D_PIVOT], met, log, cnt)
     observe_rotation(k - TS_PEAK, t, y[2], y[3], disc, par, met, log, cnt)
     return RUNNING
 
@@ -483,7 +469,7 @@ def sw_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         cross_transition(y, 0, disc)
         return RUNNING
     if k == SW_OVERTURN:
-        return overturned(t, y, disc, met, log, cnt)
+        return overturned(t, y[0], y[1], disc[D_PIVOT], met, log, cnt)
     if k == SW_FLIGHT:
         log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], y[0], disc[D_PIVOT])
         return FLIGHT

@@ -26,17 +26,16 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import integrate_hybrid, log_event, sweep_rows
+from .hybrid import init_metrics, integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
-                     EV_IMPACT, EV_OVERTURN, EV_PASS_ALPHA, EV_REST, EV_SLIP,
-                     EV_STICK, EV_UPLIFT, FLIGHT, M_IMPACTS, M_MAX_SLIDE,
-                     M_N_STICK_SLIP, M_RESIDUAL_SLIDE, M_T_LAST_IMPACT,
-                     M_T_OVER, M_T_PASS_ALPHA, M_T_PREV, M_T_ROCK, M_T_SLIDE,
+                     EV_IMPACT, EV_REST, EV_SLIP, EV_STICK, EV_UPLIFT, FLIGHT,
+                     M_IMPACTS, M_MAX_SLIDE, M_N_STICK_SLIP, M_RESIDUAL_SLIDE,
+                     M_T_LAST_IMPACT, M_T_PREV, M_T_ROCK, M_T_SLIDE,
                      M_T_SLIDE_ROCK, M_T_UPLIFT, MODE_REST, MODE_ROCK,
-                     MODE_SLIDE, MODE_SLIDE_ROCK, N_DISC, N_MET, O_EPS_OMEGA,
-                     O_EPS_T, O_T0, OVERTURN_MODE1, OVERTURN_MODE2, RUNNING,
-                     SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
-from .rigid import P_ALPHA, P_E, P_G, P_THETA_OVER, UPLIFT_RTOL, track_rotation
+                     MODE_SLIDE, MODE_SLIDE_ROCK, N_DISC, O_EPS_OMEGA, O_EPS_T,
+                     O_T0, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
+from .rigid import (P_ALPHA, P_E, P_G, P_THETA_OVER, UPLIFT_RTOL, initial_pivot,
+                    overturned, passed_alpha, track_rotation)
 
 Q_B = 10        # m, half-width
 Q_H = 11        # m, half-height (CM height above the base)
@@ -309,9 +308,7 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         track_rotation(y[0], met)
         return RUNNING
     if k == 5:
-        if np.isnan(met[M_T_PASS_ALPHA]):
-            met[M_T_PASS_ALPHA] = t
-            log_event(log, cnt, t, EV_PASS_ALPHA, y[1], y[1], y[0], s)
+        passed_alpha(t, y[0], y[1], s, met, log, cnt)
         return RUNNING
     book_time(t, disc, met)
     track_slide(y[2], met)
@@ -328,12 +325,7 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             return RUNNING
         return stick(t, y, par, disc, hdr, smp, met, log, cnt)
     if k == 1:
-        met[M_T_OVER] = t
-        track_rotation(y[0], met)
-        log_event(log, cnt, t, EV_OVERTURN, y[1], y[1], y[0], s)
-        if met[M_IMPACTS] > 0:
-            return OVERTURN_MODE1
-        return OVERTURN_MODE2
+        return overturned(t, y[0], y[1], s, met, log, cnt)
     return impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
 
 
@@ -353,28 +345,31 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
 
 
 @jit
-def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
-    for i in range(N_MET):
-        met[i] = 0.0
-    met[M_T_UPLIFT] = np.nan
-    met[M_T_OVER] = np.nan
-    met[M_T_PASS_ALPHA] = np.nan
-    met[M_T_LAST_IMPACT] = -np.inf
-    met[M_T_PREV] = t0
+def initial_contact(t0, theta, dtheta, dslip, static_rest, disc, met):
+    """Metrics and contact mode at the start of a run from the rotation, its
+    rate and the slip rate (rigid and flexible bodies with friction); REST
+    is a static phase only where nothing moves in it (``static_rest``)."""
+    init_metrics(t0, met)
     for i in range(N_DISC):
         disc[i] = 0
-    if y[0] != 0.0 or y[1] != 0.0:
-        s = 1 if (y[0] > 0.0 or (y[0] == 0.0 and y[1] > 0.0)) else -1
-        if y[3] != 0.0:
-            set_mode(disc, MODE_SLIDE_ROCK, s, 1 if y[3] > 0.0 else -1)
-        else:
-            set_mode(disc, MODE_ROCK, s, 0)
+    disc[D_PIVOT] = 1
+    if dslip != 0.0:
+        disc[D_SLIP_DIR] = 1 if dslip > 0.0 else -1
+    if theta != 0.0 or dtheta != 0.0:
+        disc[D_MODE] = MODE_SLIDE_ROCK if dslip != 0.0 else MODE_ROCK
+        disc[D_PIVOT] = initial_pivot(theta, dtheta)
         met[M_T_UPLIFT] = t0
-        track_rotation(y[0], met)
-    elif y[3] != 0.0:
-        set_mode(disc, MODE_SLIDE, 1, 1 if y[3] > 0.0 else -1)
+        track_rotation(theta, met)
+    elif dslip != 0.0:
+        disc[D_MODE] = MODE_SLIDE
     else:
-        set_mode(disc, MODE_REST, 1, 0)
+        disc[D_MODE] = MODE_REST
+        disc[D_STATIC] = 1 if static_rest else 0
+
+
+@jit
+def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
+    initial_contact(t0, y[0], y[1], y[3], True, disc, met)
     track_slide(y[2], met)
 
 

@@ -32,7 +32,8 @@ from .config import jit, jit_generic, next_up, ulp
 from .dopri import (N_STAGES, dense_coefficients, dense_eval, error_norm,
                     rk_step, select_initial_step, step_factor)
 from .excitation import excitation_end, next_breakpoint, scan_origin, scan_step
-from .layout import (D_STATIC, FAIL_EVENT, FAIL_NONFINITE, FAIL_OUTPUT_FULL,
+from .layout import (M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA, M_T_PREV,
+                     M_T_UPLIFT, D_STATIC, FAIL_EVENT, FAIL_NONFINITE, FAIL_OUTPUT_FULL,
                      FAIL_STEP_BUDGET, FAIL_STEP_UNDERFLOW, FAIL_TRANSITIONS,
                      LOG_KIND, LOG_PIVOT, LOG_POST, LOG_PRE, LOG_T, LOG_THETA,
                      M_N_EVENTS, M_NFEV, M_NREJECT, M_NSTEPS, M_T_EXC_END, N_LOG, N_MET,
@@ -47,6 +48,19 @@ C_NHIST = 0
 C_NLOG = 1
 C_LOG_DROPPED = 2
 N_COUNTERS = 4
+
+
+@jit
+def init_metrics(t0, met):
+    """Metrics at the start of a run: counters 0, times of events not yet
+    seen NaN, bookkeeping time t0."""
+    for i in range(N_MET):
+        met[i] = 0.0
+    met[M_T_UPLIFT] = np.nan
+    met[M_T_OVER] = np.nan
+    met[M_T_PASS_ALPHA] = np.nan
+    met[M_T_LAST_IMPACT] = -np.inf
+    met[M_T_PREV] = t0
 
 
 @jit

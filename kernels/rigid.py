@@ -17,16 +17,16 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import integrate_hybrid, log_event, sweep_rows
+from .hybrid import init_metrics, integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_FLIGHT, EV_IMPACT,
                      EV_OVERTURN, EV_PASS_ALPHA, EV_REST, EV_UPLIFT, EXC_NONE,
                      FLIGHT, M_IMPACTS, M_MAX_ABS_THETA, M_MAX_THETA_NEG,
                      M_MAX_THETA_POS, M_T_EXC_END, M_T_FINAL, M_T_LAST_IMPACT,
                      M_T_OVER, M_T_PASS_ALPHA, M_T_UPLIFT, MODE_REST,
-                     MODE_ROCK, N_DISC, N_HDR, N_MET, O_EARLY_EXIT,
-                     O_EPS_OMEGA, O_EPS_T, O_T0, O_T_END, OVERTURN_MODE1,
-                     OVERTURN_MODE2, RUNNING, SAFE_BOUNDED, SAFE_MOVING,
-                     SAFE_NO_UPLIFT, SAFE_REST, X_KIND)
+                     MODE_ROCK, N_DISC, N_HDR, O_EARLY_EXIT, O_EPS_OMEGA,
+                     O_EPS_T, O_T0, O_T_END, OVERTURN_MODE1, OVERTURN_MODE2,
+                     RUNNING, SAFE_BOUNDED, SAFE_MOVING, SAFE_NO_UPLIFT,
+                     SAFE_REST, X_KIND)
 
 P_ALPHA = 0
 P_P = 1
@@ -184,13 +184,31 @@ def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, e):
 
 
 @jit
-def overturned(t, y, disc, met, log, cnt):
+def overturned(t, theta, dtheta, s, met, log, cnt):
+    """|theta| reached theta_over on pivot s: mode 1 after an impact, else
+    mode 2 (every rocking model)."""
     met[M_T_OVER] = t
-    track_rotation(y[0], met)
-    log_event(log, cnt, t, EV_OVERTURN, y[1], y[1], y[0], disc[D_PIVOT])
+    track_rotation(theta, met)
+    log_event(log, cnt, t, EV_OVERTURN, dtheta, dtheta, theta, s)
     if met[M_IMPACTS] > 0:
         return OVERTURN_MODE1
     return OVERTURN_MODE2
+
+
+@jit
+def passed_alpha(t, theta, dtheta, s, met, log, cnt):
+    """Observer: the first time |theta| passes alpha (every rocking model)."""
+    if np.isnan(met[M_T_PASS_ALPHA]):
+        met[M_T_PASS_ALPHA] = t
+        log_event(log, cnt, t, EV_PASS_ALPHA, dtheta, dtheta, theta, s)
+
+
+@jit
+def initial_pivot(theta, dtheta):
+    """Pivot of a run released at (theta, theta') != 0."""
+    if theta != 0.0:
+        return 1 if theta > 0.0 else -1
+    return 1 if dtheta > 0.0 else -1
 
 
 @jit
@@ -199,10 +217,7 @@ def observe(k, t, y, disc, met, log, cnt):
     if k == K_PEAK:
         track_rotation(y[0], met)
     elif k == K_PASS_ALPHA:
-        if np.isnan(met[M_T_PASS_ALPHA]):
-            met[M_T_PASS_ALPHA] = t
-            log_event(log, cnt, t, EV_PASS_ALPHA, y[1], y[1], y[0],
-                      disc[D_PIVOT])
+        passed_alpha(t, y[0], y[1], disc[D_PIVOT], met, log, cnt)
 
 
 @jit
@@ -213,7 +228,7 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
                              par[P_E])
     if k == K_OVERTURN:
-        return overturned(t, y, disc, met, log, cnt)
+        return overturned(t, y[0], y[1], disc[D_PIVOT], met, log, cnt)
     if k == K_FLIGHT:
         log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], y[0], disc[D_PIVOT])
         return FLIGHT
@@ -365,7 +380,7 @@ def fall_to_overturn(t, y, par, disc, met, log, cnt):
     y[0] = s * theta_over
     y[1] = s * 2.0 * p * math.sqrt(c + sh * sh)
     met[M_T_FINAL] = t + dt_over
-    overturned(t + dt_over, y, disc, met, log, cnt)
+    overturned(t + dt_over, y[0], y[1], s, met, log, cnt)
 
 
 @jit
@@ -412,21 +427,13 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
 @jit
 def init_state(t0, y, par, disc, hdr, smp, met):
     """Initial discrete state from (theta0, theta'0)."""
-    for i in range(N_MET):
-        met[i] = 0.0
-    met[M_T_UPLIFT] = np.nan
-    met[M_T_OVER] = np.nan
-    met[M_T_PASS_ALPHA] = np.nan
-    met[M_T_LAST_IMPACT] = -np.inf
+    init_metrics(t0, met)
     for i in range(N_DISC):
         disc[i] = 0
     if y[0] != 0.0 or y[1] != 0.0:
         disc[D_MODE] = MODE_ROCK
         disc[D_STATIC] = 0
-        if y[0] != 0.0:
-            disc[D_PIVOT] = 1 if y[0] > 0.0 else -1
-        else:
-            disc[D_PIVOT] = 1 if y[1] > 0.0 else -1
+        disc[D_PIVOT] = initial_pivot(y[0], y[1])
         met[M_T_UPLIFT] = t0
         track_rotation(y[0], met)
     else:

@@ -226,7 +226,7 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     if k == K_WALL:
         return wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
     if k == K_OVERTURN:
-        return overturned(t, y, disc, met, log, cnt)
+        return overturned(t, y[0], y[1], disc[D_PIVOT], met, log, cnt)
     if k == K_FLIGHT:
         log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], y[0], disc[D_PIVOT])
         return FLIGHT
