@@ -40,6 +40,7 @@ from fastrock import excitation as X
 from fastrock import foundation as FD
 from fastrock.kernels import layout as L
 from fastrock.solver import Solver
+from ratios import one_thread  # shared bench helpers (bench/ is on sys.path)
 
 BODY = fr.RigidBlock.rectangle(b=0.1, h=0.5)
 MASS = 10.0
@@ -101,17 +102,6 @@ def run_sweep(spec, inputs):
 def pulse_grid(n):
     return [fr.Pulse(a, f, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
             for f in np.linspace(0.5, 10.0, n) for a in np.linspace(1.0, 6.0, n)]
-
-
-class one_thread:
-    def __enter__(self):
-        import numba
-        self.n = numba.get_num_threads()
-        numba.set_num_threads(1)
-
-    def __exit__(self, *exc):
-        import numba
-        numba.set_num_threads(self.n)
 
 
 # ------------------------------------------------------------------ SciPy baseline

@@ -45,6 +45,7 @@ from fastrock.kernels import layout as L
 from fastrock.records import load_default_record
 from fastrock.scene import Scene
 from fastrock.solver import Solver
+from ratios import one_thread  # shared bench helpers (bench/ is on sys.path)
 
 BLOCK = fr.RigidBlock.rectangle(b=0.25, h=1.0)
 T_AFTER = 10.0
@@ -78,17 +79,6 @@ def best_of(fns, repeats, clock=time.perf_counter):
             f()
             best[i] = min(best[i], clock() - t0)
     return best
-
-
-class one_thread:
-    def __enter__(self):
-        import numba
-        self.n = numba.get_num_threads()
-        numba.set_num_threads(1)
-
-    def __exit__(self, *exc):
-        import numba
-        numba.set_num_threads(self.n)
 
 
 # ------------------------------------------------------------------ 1. mu = inf vs none

@@ -269,6 +269,17 @@ def with_threads(n, fn):
         numba.set_num_threads(old)
 
 
+class one_thread:
+    """Context manager: Numba on one thread inside the block."""
+
+    def __enter__(self):
+        self.n = numba.get_num_threads()
+        numba.set_num_threads(1)
+
+    def __exit__(self, *exc):
+        numba.set_num_threads(self.n)
+
+
 def fmt_t(s):
     if s >= 1.0:
         return f"{s:.2f} s"
