@@ -43,11 +43,11 @@ from . import _validate as V
 from . import excitation as X
 from .bodies import RigidBlock
 from .models import KernelSpec
-from .outcomes import EVENT_NAMES, outcome_of, status_of
-from .simulate import SimulationResult, _ground_at, metrics_dict, run_inputs
+from .outcomes import outcome_of, status_of
+from .simulate import SimulationResult, _ground_at, events_frame, metrics_dict, run_inputs
 from .solver import DEFAULT_T_AFTER, make_solver
 from fastrock.kernels import layout as L
-from fastrock.kernels.hybrid import C_LOG_DROPPED, C_NHIST, C_NLOG, N_COUNTERS
+from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
 
 __all__ = [
     "TwoSpringFoundation", "SwitchingFoundation", "LinearVibration", "block_inertia",
@@ -422,16 +422,7 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical
             cols[name] = np.where(D[:, slot] != 0, foundation.k_v * d + foundation.c_v * dd,
                                   0.0)
     history = pd.DataFrame(cols)
-    events = pd.DataFrame({
-        "t": lg[:, L.LOG_T],
-        "event": [EVENT_NAMES.get(int(k), str(k)) for k in lg[:, L.LOG_KIND]],
-        "pivot": lg[:, L.LOG_PIVOT].astype(int),
-        "theta": lg[:, L.LOG_THETA],
-        "velocity_before": lg[:, L.LOG_PRE],
-        "velocity_after": lg[:, L.LOG_POST],
-    })
-    if cnt[C_LOG_DROPPED]:
-        events.attrs["dropped"] = int(cnt[C_LOG_DROPPED])
+    events = events_frame(lg, cnt)
     metrics = metrics_dict(met, body)
     metrics["time_rock"] = float(met[L.M_T_ROCK])
     metrics["time_contact"] = float(met[L.M_T_CONTACT])

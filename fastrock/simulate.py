@@ -203,16 +203,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     if spec.friction:
         history["d"] = hist_y[:nh, spec.slide_index]
         history["d_dot"] = hist_y[:nh, spec.slide_index + 1]
-    nl = int(cnt[C_NLOG])
-    lg = log[:nl]
-    events = pd.DataFrame({
-        "t": lg[:, L.LOG_T],
-        "event": [EVENT_NAMES.get(int(k), str(k)) for k in lg[:, L.LOG_KIND]],
-        "pivot": lg[:, L.LOG_PIVOT].astype(int),
-        "theta": lg[:, L.LOG_THETA],
-        "velocity_before": lg[:, L.LOG_PRE],
-        "velocity_after": lg[:, L.LOG_POST],
-    })
+    events = events_frame(log[:int(cnt[C_NLOG])], cnt)
     metrics = metrics_dict(met, body)
     outcome = outcome_of(code)
     if spec.friction:
@@ -225,8 +216,6 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     if metrics.get("energy_gains", 0) > 0:
         warnings.warn(f"the pivot-switch (I1) impact map created energy at {metrics['energy_gains']} "
                       "impact(s) in this run (see README, flexible bodies)", stacklevel=2)
-    if cnt[C_LOG_DROPPED]:
-        events.attrs["dropped"] = int(cnt[C_LOG_DROPPED])
     return SimulationResult(history=history, events=events, outcome=outcome,
                             status=status_of(code), status_code=code,
                             metrics=metrics, kernel=spec.name, body=body,
@@ -235,6 +224,22 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
                                                           ("friction", spec.friction),
                                                           ("wall", wall is not None),
                                                           ("vertical", vertical is not None)) if on))
+
+
+def events_frame(lg, cnt):
+    """The events table of a run from its kernel event log rows (and the
+    count of rows the full log dropped, in ``attrs["dropped"]``)."""
+    events = pd.DataFrame({
+        "t": lg[:, L.LOG_T],
+        "event": [EVENT_NAMES.get(int(k), str(k)) for k in lg[:, L.LOG_KIND]],
+        "pivot": lg[:, L.LOG_PIVOT].astype(int),
+        "theta": lg[:, L.LOG_THETA],
+        "velocity_before": lg[:, L.LOG_PRE],
+        "velocity_after": lg[:, L.LOG_POST],
+    })
+    if cnt[C_LOG_DROPPED]:
+        events.attrs["dropped"] = int(cnt[C_LOG_DROPPED])
+    return events
 
 
 def run_inputs(body, excitation, vertical, duration, t_after, t_eval, history_capacity, solver,
