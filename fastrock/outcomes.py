@@ -22,6 +22,8 @@ STATUS = {
     L.FAIL_TRANSITIONS: "failed:transition-loop",
     L.FAIL_OUTPUT_FULL: "failed:output-full",
     L.FAIL_INCONSISTENT: "failed:inconsistent-contact",
+    L.FAIL_UNSTABLE: "failed:unstable-step",
+    L.FAIL_INTERRUPTED: "failed:interrupted",
     L.RUNNING: "failed:unfinished",
 }
 
@@ -38,7 +40,29 @@ STATUS_DESCRIPTION = {
               "reached 0 while rocking)",
     "failed:inconsistent-contact": "friction: neither stick nor slip in either direction is consistent "
                                    "(a Painleve-type paradox, seen at very large mu)",
+    "failed:unstable-step": "the fixed step dt lies outside the integrator's stability region for this "
+                            "body (the solution diverged or would have): a smaller dt, or the adaptive "
+                            "solver, gives the answer",
+    "failed:interrupted": "stopped by Ctrl-C before the run finished",
 }
+
+
+def warn_unstable(status, MET, dt, stacklevel=3):
+    """Warn when fixed-step runs ended as failed:unstable-step, naming a step
+    that would be stable (the smallest the kernels suggested)."""
+    import warnings
+
+    import numpy as np
+    status = np.atleast_1d(status)
+    bad = status == L.FAIL_UNSTABLE
+    if not bad.any():
+        return
+    dts = np.atleast_2d(MET)[bad, L.M_DT_STABLE]
+    dts = dts[np.isfinite(dts) & (dts > 0)]
+    hint = f"; dt <= {dts.min():.3g} s would be stable" if dts.size else ""
+    warnings.warn(f"{int(bad.sum())} of {status.size} run(s) ended as failed:unstable-step: the fixed step "
+                  f"dt = {dt:g} s made a local error above 1 % of the motion, where the solution diverges"
+                  f"{hint} (or use the adaptive solver)", RuntimeWarning, stacklevel=stacklevel)
 
 
 def outcome_of(code):

@@ -65,7 +65,7 @@ import pandas as pd
 from . import _validate as V
 from . import models
 from .bodies import RigidBlock
-from .outcomes import outcome_of, status_of
+from .outcomes import outcome_of, status_of, warn_unstable
 from .records import GroundMotion, load_default_record, read_record
 from .solver import DEFAULT_T_AFTER, make_solver
 from .sweep import run_sweep
@@ -348,6 +348,8 @@ def _rows_sweep(records, rec_idx, b, s, wall_idx, walls, *, e, solver, t_after, 
             status[bad] = st2
             MET[bad] = met2
     finished = status != L.RUNNING
+    if solver.dt:
+        warn_unstable(status[finished], MET[finished], solver.dt)
     outcome = np.array([outcome_of(c) if f else "unfinished" for c, f in zip(status, finished)],
                        dtype=object)
     df = pd.DataFrame({

@@ -10,7 +10,7 @@ import pandas as pd
 from . import _validate as V
 from . import excitation as X
 from . import models
-from .outcomes import EVENT_NAMES, MODE_NAMES, outcome_of, status_of
+from .outcomes import EVENT_NAMES, MODE_NAMES, outcome_of, status_of, warn_unstable
 from .solver import DEFAULT_T_AFTER, make_solver
 from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import C_LOG_DROPPED, C_NHIST, C_NLOG, N_COUNTERS
@@ -213,6 +213,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
             metrics["lift_offs"] = int(metrics["lift_offs"])
         if outcome == "safe" and abs(metrics["residual_slide"]) > friction.slide_tolerance:
             outcome = "slide"
+    if solver.dt:
+        warn_unstable(code, met, solver.dt)
     if metrics.get("energy_gains", 0) > 0:
         warnings.warn(f"the pivot-switch (I1) impact map created energy at {metrics['energy_gains']} "
                       "impact(s) in this run (see README, flexible bodies)", stacklevel=2)

@@ -7,7 +7,7 @@ import pandas as pd
 from . import _validate as V
 from . import excitation as X
 from . import models
-from .outcomes import outcome_of, status_of
+from .outcomes import outcome_of, status_of, warn_unstable
 from .solver import DEFAULT_T_AFTER, make_solver
 from .sweep import run_sweep
 from fastrock.kernels import layout as L
@@ -130,6 +130,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     df["theta_end"] = YF[:, spec.theta_index]
     df["theta_dot_end"] = YF[:, spec.theta_index + 1]
     df = df.iloc[:done].reset_index(drop=True)
+    if solver.dt:
+        warn_unstable(status[:done], MET[:done], solver.dt)
     df.attrs.update(interrupted=done < n, kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e,
                     pulse=pulse, solver=solver.name)
     if boundary_check:

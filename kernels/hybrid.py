@@ -30,20 +30,24 @@ from numba import prange
 
 from .config import jit, jit_generic, next_up, ulp
 from .dopri import (N_STAGES, dense_coefficients, dense_eval, error_norm,
-                    rk_step, select_initial_step, step_factor)
+                    fixed_step_error, rk_step, select_initial_step, step_factor)
 from .excitation import excitation_end, next_breakpoint, scan_origin, scan_step
 from .layout import (M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA, M_T_PREV,
-                     M_T_UPLIFT, D_STATIC, FAIL_EVENT, FAIL_NONFINITE, FAIL_OUTPUT_FULL,
+                     M_T_UPLIFT, D_STATIC, FAIL_EVENT, FAIL_OUTPUT_FULL,
                      FAIL_STEP_BUDGET, FAIL_STEP_UNDERFLOW, FAIL_TRANSITIONS,
                      LOG_KIND, LOG_PIVOT, LOG_POST, LOG_PRE, LOG_T, LOG_THETA,
                      M_N_EVENTS, M_NFEV, M_NREJECT, M_NSTEPS, M_T_EXC_END, N_LOG, N_MET,
                      M_T_FINAL, O_ATOL, O_DT_FIXED, O_MAX_STEP, O_MAX_STEPS,
+                     FAIL_UNSTABLE, FAIL_INTERRUPTED, M_ERR_FIXED, M_DT_STABLE,
+                     O_ABORT,
                      O_RECORD_BREAKS, O_RTOL, O_T0, O_T_END, RUNNING)
 
 MAX_BISECT = 200          # iteration cap of every bisection
 MAX_FALSI = 4 * MAX_BISECT   # regula falsi: at least MAX_BISECT halvings
 EPS = 2.220446049250313e-16
 MAX_ZERO_LENGTH = 200     # transitions in a row without time advancing
+ERR_FIXED_MAX = 1e-2      # fixed step: largest relative local error (see
+#                           fixed_step_error): beyond it the step is unstable
 C_NHIST = 0
 C_NLOG = 1
 C_LOG_DROPPED = 2
@@ -61,6 +65,7 @@ def init_metrics(t0, met):
     met[M_T_PASS_ALPHA] = np.nan
     met[M_T_LAST_IMPACT] = -np.inf
     met[M_T_PREV] = t0
+    met[M_DT_STABLE] = np.nan
 
 
 @jit
@@ -324,6 +329,7 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
     gd1 = np.empty(n_events)
     term = np.empty(n_events, dtype=np.bool_)
     roots = np.empty(n_events)
+    y_scale = np.abs(y)
 
     store = hist_t.shape[0] > 0
     every_step = store and t_eval.shape[0] == 0
@@ -415,9 +421,20 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                         smp)
                 met[M_NFEV] += 6
                 steps_taken += 1.0
-                if not _all_finite(y_new):
-                    status = FAIL_NONFINITE
+                err = fixed_step_error(K, h, y_new, y_scale, atol)
+                if not err <= met[M_ERR_FIXED]:
+                    met[M_ERR_FIXED] = err
+                if not err <= ERR_FIXED_MAX:
+                    # a diverging step is no physics.  The error grows
+                    # about as h^5 up to the limit: suggest a step inside.
+                    met[M_DT_STABLE] = (0.5 * h * (ERR_FIXED_MAX / err) ** 0.2
+                                        if np.isfinite(err) else 0.1 * h)
+                    status = FAIL_UNSTABLE
                     break
+                for i in range(n):
+                    a = abs(y_new[i])
+                    if a > y_scale[i]:
+                        y_scale[i] = a
             else:
                 # rk.py 111-171 ``_step_impl``
                 min_step = 10.0 * abs(ulp(t))

@@ -22,6 +22,8 @@ FAIL_NONFINITE = -4     # NaN/inf in the state
 FAIL_TRANSITIONS = -5   # too many discrete transitions without time advance
 FAIL_OUTPUT_FULL = -6   # time-history buffer full (front end retries larger)
 FAIL_INCONSISTENT = -7  # no contact mode is consistent (Painleve-type, friction)
+FAIL_UNSTABLE = -8      # fixed step outside the integrator's stability region
+FAIL_INTERRUPTED = -9   # stopped by the user (Ctrl-C) during the run
 
 # ---- discrete state vector (int64) -----------------------------------------
 D_MODE = 0         # contact mode, model specific (MODE_* below)
@@ -71,6 +73,8 @@ M_MIN_U = 25          # m, most negative deflection (internal)
 M_T_UNLOADED = 26     # s spent with the pivot in tension (lift-off held)
 M_N_LIFT_OFF = 27     # times N reached 0 while rocking (lift-off held)
 M_T_SLIP_START = 28   # s, last slip start from stick (internal)
+M_ERR_FIXED = 29      # fixed step: largest relative local error of a step
+M_DT_STABLE = 30      # s, fixed step: a step that would be stable (failed runs)
 N_MET = 32
 
 # ---- solver options vector (float64) ---------------------------------------
@@ -85,6 +89,7 @@ O_RECORD_BREAKS = 7  # 1: every record sample is a breakpoint
 O_EPS_OMEGA = 8     # rad/s, chatter-to-rest velocity threshold
 O_EPS_T = 9         # s, chatter-to-rest impact interval
 O_T0 = 10
+O_ABORT = 11        # set to 1 from outside (Ctrl-C): the run stops at once
 N_OPT = 12
 
 # ---- event log (float64 rows) ----------------------------------------------
