@@ -234,6 +234,73 @@ def start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt):
 
 
 @jit
+def kinetic(w, v, s, b, h, iG):
+    """Kinetic energy per unit mass at theta = 0, rocking at w on pivot s
+    with base slip velocity v: v_G = (v + h w, s b w)."""
+    vx = v + h * w
+    vy = s * b * w
+    return 0.5 * (vx * vx + vy * vy + iG * w * w)
+
+
+@jit
+def routh_impact(pre, vs, s, b, h, iG, mu_s, mu_k):
+    """Plastic frictional impact of the new corner -s by Routh's method
+    (Stronge, Impact Mechanics, 2000, ch. 5): the contact velocity (v_t,
+    v_n) = (vs, 2 s b pre) evolves linearly in the normal impulse with
+    friction -mu_k sgn(v_t) while slipping; when v_t reaches 0 the contact
+    sticks if mu_s holds, else slips the other way; the impact ends at
+    v_n = 0.  A slip that cannot raise v_n (impulsive jam) ends as a stick.
+    Friction then only dissipates.  Returns (theta'+, d'+)."""
+    w11 = 1.0 + h * h / iG
+    w12 = -s * b * h / iG
+    w22 = 1.0 + b * b / iG
+    vt = vs
+    vn = 2.0 * s * b * pre
+    pt = 0.0
+    pn = 0.0
+    for _phase in range(4):
+        if vn >= 0.0:
+            break
+        if vt == 0.0:
+            if abs(w12) <= mu_s * w11:
+                at = 0.0
+                an = w22 - w12 * w12 / w11
+                rate_t = -w12 / w11
+            else:
+                sig = 1.0 if w12 > 0.0 else -1.0
+                rate_t = -mu_k * sig
+                at = rate_t * w11 + w12
+                an = rate_t * w12 + w22
+        else:
+            sig = 1.0 if vt > 0.0 else -1.0
+            rate_t = -mu_k * sig
+            at = rate_t * w11 + w12
+            an = rate_t * w12 + w22
+        if an <= 0.0:
+            # jam: both contact velocities to zero, P = -W^-1 (vt, vn)
+            det = w11 * w22 - w12 * w12
+            pt += (-w22 * vt + w12 * vn) / det
+            pn += (w12 * vt - w11 * vn) / det
+            vt = 0.0
+            vn = 0.0
+            break
+        dp = -vn / an
+        if vt * at < 0.0 and -vt / at < dp:
+            dp = -vt / at
+            pt += rate_t * dp
+            pn += dp
+            vn += an * dp
+            vt = 0.0
+            continue
+        pt += rate_t * dp
+        pn += dp
+        vt += at * dp
+        vn = 0.0
+    post = pre + (-h * pt + s * b * pn) / iG
+    return post, vt
+
+
+@jit
 def impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     """Ground impact at theta = 0 (physics.md 1 and 4.3)."""
     s = disc[D_PIVOT]
@@ -261,6 +328,14 @@ def impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
         post = pre * (iG - k * s * b) / (iG + k * s * b)
         lam_y = -s * b * (post + pre)
         dpost = vs + h * pre - h * post - par[Q_MU_K] * sigma * lam_y
+        # the algebraic slip rule (physics.md 4.3) presumes the slip
+        # direction; where the contact itself would slip otherwise it can
+        # contradict sigma and create energy: Routh's incremental impact
+        if (sigma * dpost < 0.0 or lam_y <= 0.0
+                or kinetic(post, dpost, -s, b, h, iG)
+                > kinetic(pre, vs, s, b, h, iG)):
+            post, dpost = routh_impact(pre, vs, s, b, h, iG, par[Q_MU_S],
+                                       par[Q_MU_K])
     y[1] = post
     y[3] = dpost
     log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)

@@ -462,6 +462,48 @@ def test_slide_rock_impacts_match_impulse_momentum_and_dissipate():
     assert 200 < n_slip < 800 and 0 < n_pull < 100
 
 
+@settings(max_examples=400, deadline=None)
+@given(b=st.floats(0.05, 1.0), h=st.floats(0.2, 2.0), mu_s=st.floats(0.01, 5.0), k=st.floats(0.1, 1.0),
+       e=st.floats(0.0, 1.0, allow_subnormal=False), s=st.sampled_from([-1, 1]), w=st.floats(0.001, 5.0),
+       vs=st.floats(-2.0, 2.0, allow_subnormal=False), from_rock=st.booleans())
+def test_impacts_never_create_energy_with_any_restitution(b, h, mu_s, k, e, s, w, vs, from_rock):
+    """Random pre-impact states (issue #18 item 2): with any given e in [0, 1], any mu and either
+    contact mode, the impact never raises the kinetic energy, its normal impulse pushes, friction
+    stays inside the cone and the post-impact slip never opposes its own friction.  The
+    algebraic slip rule alone gained energy here (e = 0: 40 of 150 random runs), e.g. the
+    case below."""
+    from fastrock.kernels import friction as FK
+    body = RigidBlock.rectangle(b=b, h=h, e=e)
+    par = rigid_friction_par(body, Friction(mu_s, k * mu_s))
+    iG, mu_k = par[FK.Q_IG], par[FK.Q_MU_K]
+    pre = -s * w
+    vs = 0.0 if from_rock else vs
+    post, dpost = kernel_impact(par, L.MODE_ROCK if from_rock else L.MODE_SLIDE_ROCK, s, pre, vs)
+    assert np.isfinite([post, dpost]).all()
+    k0 = 0.5 * ((vs + h * pre) ** 2 + (b * pre) ** 2 + iG * pre ** 2)
+    k1 = 0.5 * ((dpost + h * post) ** 2 + (b * post) ** 2 + iG * post ** 2)
+    assert k1 <= k0 * (1 + 1e-12) + 1e-300
+    lx = (dpost + h * post) - (vs + h * pre)        # impulse per unit mass
+    ly = -s * b * post - s * b * pre
+    assert ly >= -1e-12 * k0 ** 0.5
+    if dpost != 0.0:        # slipping after the impact: kinetic friction opposes the slip
+        assert abs(lx) <= mu_s * ly * (1 + 1e-9) + 1e-12
+
+
+def test_given_e_zero_slipping_impact_no_longer_gains_energy():
+    """Issue #18: e = 0 with mu = 1.15 jumped from 0.146 to 1.317 J/kg at t = 0.314 s and
+    overturned.  Friction cannot supply the impulse that stops the block (|L_x|/L_y = h/b = 3.6
+    > mu), and the contact's own motion sticks (Routh): Housner's plastic map, e = 0.8913."""
+    body = RigidBlock.rectangle(0.17941, 0.64188, e=0.0)
+    r = fr.simulate(body, None, theta0=-0.10136, duration=5.6178, friction=Friction(1.15266))
+    assert r.outcome == "safe"
+    ev = r.events[r.events["event"] == "impact"]
+    ratio = (ev["velocity_after"] / ev["velocity_before"]).to_numpy()
+    housner = 1 - 1.5 * np.sin(body.alpha) ** 2
+    assert np.all(np.abs(ratio) <= 1.0)
+    assert ratio[0] == pytest.approx(housner, rel=1e-12)
+
+
 def test_rock_impacts_respect_coulomb():
     """User e = 0.6, b/h = 0.25, mu_s = 0.3: free rocking in stick (no slip before the impacts).
     The stick impact needs |L_x|/L_y = (h/b)(1 - e)/(1 + e) = 1.0 > mu_s, so each impact must
