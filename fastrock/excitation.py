@@ -158,6 +158,23 @@ def as_excitation(obj):
     raise ValueError(f"excitation must be a Pulse, SampledMotion or GroundMotion, got {type(obj).__name__}")
 
 
+#: float64 must resolve time at the end of an excitation to this fraction of
+#: its time scale (a record's dt, 1/64 of a pulse)
+TIME_RESOLUTION = 1e-9
+
+
+def _check_time_resolution(exc, body):
+    """Refuse a t_start so late that float64 time cannot resolve the motion."""
+    scale = exc.dt if isinstance(exc, SampledMotion) else exc.pulse_duration(body) / 64.0
+    t_end = exc.end_time(body)
+    if np.spacing(t_end) > TIME_RESOLUTION * scale:
+        limit = TIME_RESOLUTION * scale / np.finfo(float).eps
+        raise ValueError(f"t_start = {exc.t_start:g} s is too late: at t = {t_end:.4g} s float64 resolves time "
+                         f"only to {np.spacing(t_end):.2g} s, too coarse for an excitation whose time scale is "
+                         f"{scale:.3g} s; start it before about {limit:.3g} s (the physics does not depend on "
+                         f"the time origin)")
+
+
 def to_header(body, horizontal, vertical=None):
     """Kernel header (float64[N_EXC]) and sample array for one run."""
     hdr = np.zeros(L.N_EXC)
@@ -166,6 +183,7 @@ def to_header(body, horizontal, vertical=None):
     for c, exc in ((L.H_CHANNEL, as_excitation(horizontal)), (L.V_CHANNEL, as_excitation(vertical))):
         if exc is None:
             continue
+        _check_time_resolution(exc, body)
         if isinstance(exc, SampledMotion):
             s = exc.samples_si(body)
             exc.fill_header(hdr, c, body, offset)

@@ -46,6 +46,7 @@ from .models import KernelSpec
 from .outcomes import outcome_of, status_of
 from .simulate import SimulationResult, _ground_at, events_frame, metrics_dict, run_inputs
 from .solver import DEFAULT_T_AFTER, make_solver
+from .sweep import call_kernel
 from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
 
@@ -328,8 +329,8 @@ def _integrate(spec, y0, hdr, smp, opt, te, cap):
         hist_d = np.empty((cap, L.N_DISC), np.int64)
         log = np.empty((max(1000, cap // 4), L.N_LOG))
         cnt = np.zeros(N_COUNTERS, np.int64)
-        code = int(spec.simulate(y, spec.par, hdr, smp, opt, te, met, hist_t, hist_y, hist_d,
-                                 log, cnt))
+        code = int(call_kernel(spec.simulate, y, spec.par, hdr, smp, opt, te, met, hist_t, hist_y,
+                               hist_d, log, cnt, opt=opt))
         if code == L.FAIL_OUTPUT_FULL and cap < 50_000_000:
             cap *= 4
             continue

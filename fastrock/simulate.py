@@ -12,6 +12,7 @@ from . import excitation as X
 from . import models
 from .outcomes import EVENT_NAMES, MODE_NAMES, outcome_of, status_of, warn_unstable
 from .solver import DEFAULT_T_AFTER, make_solver
+from .sweep import call_kernel
 from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import C_LOG_DROPPED, C_NHIST, C_NLOG, N_COUNTERS
 
@@ -175,7 +176,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         hist_d = np.empty((cap, 3), np.int64)
         log = np.empty((max(1000, cap // 4), L.N_LOG))
         cnt = np.zeros(N_COUNTERS, np.int64)
-        code = int(spec.simulate(y, spec.par, hdr, smp, opt, te, met, hist_t, hist_y, hist_d, log, cnt))
+        code = int(call_kernel(spec.simulate, y, spec.par, hdr, smp, opt, te, met, hist_t, hist_y, hist_d, log,
+                               cnt, opt=opt))
         if code == L.FAIL_OUTPUT_FULL and cap < 50_000_000:
             cap *= 4
             continue

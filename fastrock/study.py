@@ -83,7 +83,7 @@ from .bodies import FlexibleBody, RigidBlock
 from .outcomes import outcome_of, status_of
 from .records import G_STANDARD, GroundMotion, load_default_record
 from .solver import DEFAULT_T_AFTER, Solver
-from .sweep import Progress
+from .sweep import Progress, call_kernel
 # Reused from the rocking spectrum (private helpers, imported on purpose so
 # that records and wall settings are read and labelled the same way there and
 # here): _read_one applies --unit/--dt only where a file does not state them;
@@ -677,9 +677,10 @@ def run_chunk(payload):
             import numba
             numba.set_num_threads(min(nt, numba.config.NUMBA_NUM_THREADS))
         t0 = time.perf_counter()
-        sweep(Y0, np.ascontiguousarray(payload["PAR"], float),
-              np.ascontiguousarray(payload["HDR"], float), np.ascontiguousarray(payload["smp"], float),
-              np.ascontiguousarray(payload["OPT"], float), status, met, yf)
+        opt = np.array(payload["OPT"], float, order="C")
+        call_kernel(sweep, Y0, np.ascontiguousarray(payload["PAR"], float),
+                    np.ascontiguousarray(payload["HDR"], float), np.ascontiguousarray(payload["smp"], float),
+                    opt, status, met, yf, opt=opt)
         seconds = time.perf_counter() - t0
     return {"rows": np.asarray(payload["rows"], np.int64), "status": status, "met": met,
             "seconds": seconds, "pid": os.getpid()}

@@ -2,8 +2,10 @@
 from __future__ import annotations
 
 import sys
+import threading
 import time
 import warnings
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -39,6 +41,33 @@ class Progress:
             sys.stderr.flush()
 
 
+_EXECUTOR = None
+
+
+def call_kernel(kernel, *args, opt):
+    """Call a kernel so that Ctrl-C stops it within one integration step.
+
+    Kernels release the GIL (``nogil``), so the call runs on a worker thread
+    while the main thread waits in Python, where KeyboardInterrupt arrives.
+    It then sets the abort flag of every run (``opt[..., O_ABORT]``, the
+    array the kernel reads), waits for the kernel to return (its unfinished
+    runs report ``failed:interrupted``) and raises KeyboardInterrupt again.
+    Off the main thread (Dask workers) the kernel is called directly.
+    """
+    global _EXECUTOR
+    if threading.current_thread() is not threading.main_thread():
+        return kernel(*args)
+    if _EXECUTOR is None:
+        _EXECUTOR = ThreadPoolExecutor(1, thread_name_prefix="fastrock-kernel")
+    future = _EXECUTOR.submit(kernel, *args)
+    try:
+        return future.result()
+    except KeyboardInterrupt:
+        opt[..., L.O_ABORT] = 1.0
+        future.result()
+        raise
+
+
 def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=True, label="runs"):
     """Run a sweep kernel over rows in chunks.
 
@@ -60,8 +89,18 @@ def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=Tr
             st = np.empty(stop - done, np.int64)
             met = np.empty((stop - done, L.N_MET))
             yf = np.empty((stop - done, Y0.shape[1]))
-            sweep_kernel(np.ascontiguousarray(Y0[sl]), np.ascontiguousarray(PAR[sl]),
-                         np.ascontiguousarray(HDR[sl]), smp, np.ascontiguousarray(OPT[sl]), st, met, yf)
+            opt = np.array(OPT[sl], order="C")
+            try:
+                call_kernel(sweep_kernel, np.ascontiguousarray(Y0[sl]), np.ascontiguousarray(PAR[sl]),
+                            np.ascontiguousarray(HDR[sl]), smp, opt, st, met, yf, opt=opt)
+            except KeyboardInterrupt:
+                # keep the chunk's runs that finished before the first one stopped
+                k = int(np.argmax(st == L.FAIL_INTERRUPTED)) if (st == L.FAIL_INTERRUPTED).any() else st.size
+                status[done:done + k] = st[:k]
+                MET[done:done + k] = met[:k]
+                YF[done:done + k] = yf[:k]
+                done += k
+                raise
             status[sl] = st
             MET[sl] = met
             YF[sl] = yf

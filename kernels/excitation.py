@@ -75,6 +75,16 @@ def channel_end(hdr, c):
 
 
 @jit
+def excitation_start(hdr):
+    """Time before which both channels are identically zero."""
+    t = np.inf
+    for c in (0, N_HDR):
+        if int(hdr[c + X_KIND]) != EXC_NONE:
+            t = min(t, hdr[c + X_T0])
+    return t
+
+
+@jit
 def excitation_end(hdr):
     """Time after which both channels are identically zero."""
     return max(channel_end(hdr, 0), channel_end(hdr, N_HDR), 0.0)

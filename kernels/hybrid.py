@@ -31,7 +31,8 @@ from numba import prange
 from .config import jit, jit_generic, next_up, ulp
 from .dopri import (N_STAGES, dense_coefficients, dense_eval, error_norm,
                     fixed_step_error, rk_step, select_initial_step, step_factor)
-from .excitation import excitation_end, next_breakpoint, scan_origin, scan_step
+from .excitation import (excitation_end, excitation_start, next_breakpoint,
+                         scan_origin, scan_step)
 from .layout import (M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA, M_T_PREV,
                      M_T_UPLIFT, D_STATIC, FAIL_EVENT, FAIL_OUTPUT_FULL,
                      FAIL_STEP_BUDGET, FAIL_STEP_UNDERFLOW, FAIL_TRANSITIONS,
@@ -244,6 +245,9 @@ def _static_exit(static_margin, t, t_stop, y, par, disc, hdr, smp):
         return np.inf
     origin = scan_origin(hdr)
     j = np.floor((t - origin) / hs) + 1.0
+    # nothing moves before the excitation starts: jump to the grid point
+    # just below its start instead of stepping through the quiet time
+    j = max(j, np.floor((excitation_start(hdr) - origin) / hs))
     lo = t
     glo = g
     while True:
@@ -348,6 +352,9 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
     t_phase = np.nan
 
     while status == RUNNING:
+        if opt[O_ABORT] != 0.0:
+            status = FAIL_INTERRUPTED
+            break
         if t_phase == t:
             zero_length += 1
             if zero_length > MAX_ZERO_LENGTH:
@@ -411,6 +418,9 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
             t_bound = min(t_bp, t_end)
             if steps_taken >= max_steps:
                 status = FAIL_STEP_BUDGET
+                break
+            if opt[O_ABORT] != 0.0:
+                status = FAIL_INTERRUPTED
                 break
             if dt_fixed > 0.0:
                 t_new = t + dt_fixed
