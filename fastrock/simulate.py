@@ -14,6 +14,7 @@ from .outcomes import EVENT_NAMES, MODE_NAMES, outcome_of, status_of, warn_unsta
 from .solver import DEFAULT_T_AFTER, make_solver
 from .sweep import call_kernel
 from fastrock.kernels import layout as L
+from fastrock.kernels.config import DEBUG
 from fastrock.kernels.hybrid import C_LOG_DROPPED, C_NHIST, C_NLOG, N_COUNTERS
 
 METRIC_COLUMNS = {
@@ -217,9 +218,15 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
             outcome = "slide"
     if solver.dt:
         warn_unstable(code, met, solver.dt)
+    if DEBUG:
+        metrics["energy_gains"] = int(met[L.M_ENERGY_GAINS])
     if metrics.get("energy_gains", 0) > 0:
-        warnings.warn(f"the pivot-switch (I1) impact map created energy at {metrics['energy_gains']} "
-                      "impact(s) in this run (see README, flexible bodies)", stacklevel=2)
+        if getattr(body, "impact", None) == "pivot-switch":
+            warnings.warn(f"the pivot-switch (I1) impact map created energy at {metrics['energy_gains']} "
+                          "impact(s) in this run (see README, flexible bodies)", stacklevel=2)
+        else:
+            warnings.warn(f"{metrics['energy_gains']} impact(s) raised the kinetic energy (FASTROCK_DEBUG "
+                          "check): a defect, please report it with this run", RuntimeWarning, stacklevel=2)
     return SimulationResult(history=history, events=events, outcome=outcome,
                             status=status_of(code), status_code=code,
                             metrics=metrics, kernel=spec.name, body=body,

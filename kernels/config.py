@@ -1,6 +1,7 @@
 """All Numba compiler options live here, with environment overrides.
 
 ``FASTROCK_CACHE=0`` disables the on-disk cache (``NUMBA_CACHE_DIR`` moves it).
+``FASTROCK_DEBUG=1`` compiles the impact energy checks in (never cached).
 ``NUMBA_BOUNDSCHECK=1`` and ``NUMBA_DISABLE_JIT=1`` are honoured by Numba itself.
 """
 import math
@@ -8,7 +9,11 @@ import os
 
 from numba import njit
 
-CACHE = os.environ.get("FASTROCK_CACHE", "1") != "0"
+#: ``FASTROCK_DEBUG=1``: kernels check that no impact raises the kinetic
+#: energy (counted in the energy_gains metric).  A compile-time constant, so
+#: release kernels carry no trace of it; debug kernels are never cached.
+DEBUG = os.environ.get("FASTROCK_DEBUG", "0") == "1"
+CACHE = os.environ.get("FASTROCK_CACHE", "1") != "0" and not DEBUG
 # error_model="numpy": a division by zero gives inf/nan instead of raising
 # inside a kernel (an exception in nopython code leaks and cannot be handled
 # per run in a prange sweep).

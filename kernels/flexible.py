@@ -18,7 +18,8 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import excitation_end, ground, ground_rates
-from .hybrid import init_metrics, integrate_hybrid, log_event, sweep_rows
+from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
+                     sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
                      EV_UPLIFT, FLIGHT, M_ENERGY_GAINS, M_IMPACTS, M_MAX_U,
                      M_MIN_U, M_T_CONTACT, M_T_LAST_IMPACT, M_T_PREV, M_T_ROCK,
@@ -258,8 +259,10 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
                                          cnt)
             return RUNNING
         # I3: plastic impact onto theta' = 0, horizontal momentum of the mass
+        t_before = kinetic(y, s, True, par)
         y[1] = y[1] + par[F_H] * pre
         y[3] = 0.0
+        check_energy(t_before, kinetic(y, s, False, par), met)
         log_event(log, cnt, t, EV_IMPACT, pre, 0.0, 0.0, -s)
         return contact_or_uplift(t, y, par, disc, hdr, smp, met, log, cnt)
     if k == 1:

@@ -40,7 +40,7 @@ from .flexible import (F_ALPHA, F_B, F_G, F_H, F_HB, F_MB, F_THETA_OVER, F_WN,
                        F_ZETA, base_inertia, free_column_bound, never_uplifts_again,
                        positions, track_u, uplift_margin)
 from .friction import initial_contact, track_slide
-from .hybrid import integrate_hybrid, log_event, sweep_rows
+from .hybrid import check_energy, integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_LIFT_OFF_HELD, EV_RELOAD, FAIL_INCONSISTENT,
                      M_N_LIFT_OFF, M_T_SLIP_START, M_T_UNLOADED, EV_IMPACT,
@@ -441,6 +441,23 @@ def reload(t, y, par, disc, hdr, smp, met, log, cnt):
 
 
 @jit
+def kinetic(y, s, par):
+    """Kinetic energy per unit mass, q'^T M q' / 2 with the mass matrix of
+    (u, theta, d) on pivot s (physics.md 4.4)."""
+    H = par[F_H]
+    mb = par[F_MB]
+    r = y[0] - s * par[F_B]
+    c = math.cos(y[2])
+    _X, Y, _Xb, Yb = positions(r, c, math.sin(y[2]), s, par)
+    m22 = r * r + base_inertia(par) + H * H
+    du = y[1]
+    dth = y[3]
+    dd = y[5]
+    return (0.5 * (du * du + m22 * dth * dth + (1.0 + mb) * dd * dd)
+            + H * du * dth + c * du * dd + (Y + mb * Yb) * dth * dd)
+
+
+@jit
 def impact(t, y, par, disc, hdr, smp, met, log, cnt):
     """theta -> 0: full contact, theta'+ = 0, u'+ = u'- + H theta'-,
     d'+ = d'- + h_b theta'- (physics.md 4.4), then the initiation test."""
@@ -448,10 +465,12 @@ def impact(t, y, par, disc, hdr, smp, met, log, cnt):
     pre = y[3]
     met[M_IMPACTS] += 1
     met[M_T_LAST_IMPACT] = t
+    t_before = kinetic(y, s, par)
     y[1] = y[1] + par[F_H] * pre
     y[5] = y[5] + par[F_HB] * pre
     y[2] = 0.0
     y[3] = 0.0
+    check_energy(t_before, kinetic(y, s, par), met)
     log_event(log, cnt, t, EV_IMPACT, pre, 0.0, 0.0, -s)
     return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
 

@@ -59,7 +59,8 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import init_metrics, integrate_hybrid, log_event, sweep_rows
+from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
+                     sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
                      EV_UPLIFT, FLIGHT, M_IMPACTS, M_T_CONTACT,
                      M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_PREV, M_T_ROCK,
@@ -456,6 +457,7 @@ def sw_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             y[1] = par[P_EF] * pre
             disc[D_MODE] = MODE_REST
             met[M_IMPACTS] += 1
+            check_energy(pre * pre, y[1] * y[1], met)
             met[M_T_LAST_IMPACT] = t
             log_event(log, cnt, t, EV_IMPACT, pre, y[1], y[0], disc[D_PIVOT])
             disc[D_PIVOT] = 0

@@ -26,7 +26,8 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import init_metrics, integrate_hybrid, log_event, sweep_rows
+from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
+                     sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_IMPACT, EV_REST, EV_SLIP, EV_STICK, EV_UPLIFT, FLIGHT,
                      M_IMPACTS, M_MAX_SLIDE, M_N_STICK_SLIP, M_RESIDUAL_SLIDE,
@@ -338,6 +339,8 @@ def impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
                                        par[Q_MU_K])
     y[1] = post
     y[3] = dpost
+    check_energy(kinetic(pre, vs, s, b, h, iG), kinetic(post, dpost, -s, b, h, iG),
+                 met)
     log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)
     if abs(post) < opt[O_EPS_OMEGA] or chatter:
         y[1] = 0.0

@@ -28,7 +28,7 @@ are never stepped over, and the rhs is re-evaluated just after one.
 import numpy as np
 from numba import prange
 
-from .config import jit, jit_generic, next_up, ulp
+from .config import DEBUG, jit, jit_generic, next_up, ulp
 from .dopri import (N_STAGES, dense_coefficients, dense_eval, error_norm,
                     fixed_step_error, rk_step, select_initial_step, step_factor)
 from .excitation import (excitation_end, excitation_start, next_breakpoint,
@@ -38,7 +38,7 @@ from .layout import (M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA, M_T_PREV,
                      FAIL_STEP_BUDGET, FAIL_STEP_UNDERFLOW, FAIL_TRANSITIONS,
                      LOG_KIND, LOG_PIVOT, LOG_POST, LOG_PRE, LOG_T, LOG_THETA,
                      M_N_EVENTS, M_NFEV, M_NREJECT, M_NSTEPS, M_T_EXC_END, N_LOG, N_MET,
-                     M_T_FINAL, O_ATOL, O_DT_FIXED, O_MAX_STEP, O_MAX_STEPS,
+                     M_ENERGY_GAINS, M_T_FINAL, O_ATOL, O_DT_FIXED, O_MAX_STEP, O_MAX_STEPS,
                      FAIL_UNSTABLE, FAIL_INTERRUPTED, M_ERR_FIXED, M_DT_STABLE,
                      O_ABORT,
                      O_RECORD_BREAKS, O_RTOL, O_T0, O_T_END, RUNNING)
@@ -67,6 +67,14 @@ def init_metrics(t0, met):
     met[M_T_LAST_IMPACT] = -np.inf
     met[M_T_PREV] = t0
     met[M_DT_STABLE] = np.nan
+
+
+@jit
+def check_energy(before, after, met):
+    """Debug mode only: count an impact whose kinetic energy ``after``
+    exceeds ``before`` (every impact map must dissipate)."""
+    if DEBUG and after > before * (1.0 + 1e-12) + 1e-300:
+        met[M_ENERGY_GAINS] += 1
 
 
 @jit

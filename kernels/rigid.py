@@ -17,7 +17,8 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import init_metrics, integrate_hybrid, log_event, sweep_rows
+from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
+                     sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_FLIGHT, EV_IMPACT,
                      EV_OVERTURN, EV_PASS_ALPHA, EV_REST, EV_UPLIFT, EXC_NONE,
                      FLIGHT, M_IMPACTS, M_MAX_ABS_THETA, M_MAX_THETA_NEG,
@@ -170,6 +171,7 @@ def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, e):
     y[1] = post
     disc[D_PIVOT] = -s
     met[M_IMPACTS] += 1
+    check_energy(pre * pre, post * post, met)   # same inertia about both
     log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)
     chatter = abs(post) < opt[O_EPS_OMEGA] or \
         t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]

@@ -61,7 +61,7 @@ import numpy as np
 
 from .config import jit, jit_generic, jit_parallel
 from .excitation import excitation_end, ground
-from .hybrid import integrate_hybrid, log_event, sweep_rows
+from .hybrid import check_energy, integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_STATIC, D_WALL_REST, EV_FLIGHT,
                      EV_REST, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
                      FLIGHT, LEANING, M_IMPACTS, M_T_LAST_IMPACT, M_T_UPLIFT,
@@ -184,6 +184,7 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     y[0] = w * par[P_THETA_W]
     y[1] = post
     met[M_WALL_IMPACTS] += 1
+    check_energy(pre * pre, post * post, met)
     track_rotation(y[0], met)
     log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, y[0], disc[D_PIVOT])
     if is_chatter(t, post, opt, met):
@@ -201,6 +202,7 @@ def hogan_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     y[1] = post
     met[M_IMPACTS] += 1
     met[M_WALL_IMPACTS] += 1
+    check_energy(pre * pre, post * post, met)
     log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, 0.0, disc[D_PIVOT])
     if is_chatter(t, post, opt, met):
         y[1] = 0.0
