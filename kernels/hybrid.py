@@ -442,7 +442,7 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                 err = fixed_step_error(K, h, y_new, y_scale, atol)
                 if not err <= met[M_ERR_FIXED]:
                     met[M_ERR_FIXED] = err
-                if not err <= ERR_FIXED_MAX:
+                if not err <= ERR_FIXED_MAX or not _all_finite(y_new):
                     # a diverging step is no physics.  The error grows
                     # about as h^5 up to the limit: suggest a step inside.
                     met[M_DT_STABLE] = (0.5 * h * (ERR_FIXED_MAX / err) ** 0.2

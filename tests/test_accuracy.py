@@ -162,10 +162,16 @@ def test_work_precision_foundation_small():
 def test_work_precision_flexible_friction_small():
     """The flexible body with friction: the safe pulse case slides (held lift-off), the other
     overturns; rotation and slide errors fall with rtol."""
-    df = A.work_precision(("flexible-friction",), ("pulse",), rtols=(1e-3, 1e-8), dts=(1e-2,), grid=2,
+    df = A.work_precision(("flexible-friction",), ("pulse",), rtols=(1e-3, 1e-8), dts=(5e-3, 1e-2), grid=2,
                           threads=1, progress=False)
-    assert (df["model"] == "flexible-friction").all() and len(df) == 3
-    assert df["status"].str.match(r"slide:.*/overturn:mode[12]").all()
+    assert (df["model"] == "flexible-friction").all() and len(df) == 4
+    ok = df[~((df["mode"] == "dt") & (df["setting"] == 1e-2))]
+    assert ok["status"].str.match(r"slide:.*/overturn:mode[12]").all()
+    # dt = 10 ms is refused in the overturning case: during the fall, right after a slip onset
+    # at theta = 1.23 rad, one step's local error in u is 18 % of the column's largest deflection
+    # (issue #18); without the check that step lands 3.6e-4 s early with a ragged u history
+    coarse = df[(df["mode"] == "dt") & (df["setting"] == 1e-2)]
+    assert coarse["status"].tolist() == ["slide:moving/failed:unstable-step"]
     r = df[df["mode"] == "rtol"].set_index("setting")
     # measured 3e-5 -> 3e-10 (rotation) and 7e-6 -> 2e-10 m (max slide)
     for col in ("err_max_rotation", "err_max_slide"):
