@@ -164,7 +164,9 @@ def _run_set(body, safe, over, grid, solver, t_after, repeats=3, effects=None, t
     with _threads(threads):
         for _ in range(repeats):
             t0, c0 = time.perf_counter(), time.process_time()
-            status, MET, _, _ = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, progress=False)
+            status, MET, _, done = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, progress=False)
+            if done < len(grid):
+                raise KeyboardInterrupt   # a partial grid would make a wrong error and time
             best = min(best, time.perf_counter() - t0)
             best_cpu = min(best_cpu, time.process_time() - c0)
     outcomes = [outcome_of(c) for c in status]
@@ -216,7 +218,9 @@ def _run_set_foundation(body, fnd, safe, over, grid, solver, repeats=3, threads=
     with _threads(threads):
         for _ in range(repeats):
             t0, c0 = time.perf_counter(), time.process_time()
-            status, MET, _, _ = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, progress=False)
+            status, MET, _, done = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, progress=False)
+            if done < len(grid):
+                raise KeyboardInterrupt   # a partial grid would make a wrong error and time
             best = min(best, time.perf_counter() - t0)
             best_cpu = min(best_cpu, time.process_time() - c0)
     return dict(max_rotation=peak, half_cycles=durations, safe_status=r_safe.status,
@@ -238,8 +242,28 @@ def work_precision(models=("rigid", "flexible"), excitations=("pulse", "record")
     for quick checks).  ``threads``: Numba threads of the timed sweeps (None:
     all; recorded in the ``threads`` column, 0 meaning all).
     """
-    from .solver import Solver
     rows = []
+    try:
+        _work_precision_rows(rows, models, excitations, rtols, dts, t_after, record_breakpoints, progress,
+                             grid, threads)
+    except KeyboardInterrupt:
+        import warnings
+        total = sum((len(rtols) + len(dts)) * (1 if m in FREE_FAMILIES else sum(
+            len(record_breakpoints) if e == "record" else 1 for e in excitations)) for m in models)
+        warnings.warn(f"interrupted: returning the {len(rows)} of {total} settings that finished",
+                      stacklevel=2)
+        df = pd.DataFrame(rows)
+        df.attrs.update(interrupted=True, settings_total=total)
+        return df
+    df = pd.DataFrame(rows)
+    df.attrs.update(interrupted=False, settings_total=len(rows))
+    return df
+
+
+def _work_precision_rows(rows, models, excitations, rtols, dts, t_after, record_breakpoints, progress, grid,
+                         threads):
+    """Append one row per setting to ``rows`` (kept when Ctrl-C stops the loop)."""
+    from .solver import Solver
     for model in models:
         body, effects = _family(model)
         for excitation in (("free",) if model in FREE_FAMILIES else excitations):
@@ -280,7 +304,6 @@ def work_precision(models=("rigid", "flexible"), excitations=("pulse", "record")
                               f"t/run={row['time_per_run'] * 1e3:8.3f} ms cpu/run={row['cpu_per_run'] * 1e3:8.3f} ms "
                               f"err_rot={row['err_max_rotation']:.2e} "
                               f"err_t={row['err_t_overturn']:.2e}{slide} mismatch={mism:.3f}", flush=True)
-    return pd.DataFrame(rows)
 
 
 MEASURE_LABELS = {
@@ -404,7 +427,13 @@ def _cmd(args):
     df = work_precision(models, excitations, rtols, dts, t_after=args.t_after, grid=args.grid,
                         threads=args.threads)
     df.to_csv(args.csv, index=False)
-    fig = plot_work_precision(df, measures, clock=args.clock)
-    fig.savefig(args.png, dpi=130)
+    written = [args.csv]
+    if len(df):
+        fig = plot_work_precision(df, measures, clock=args.clock)
+        fig.savefig(args.png, dpi=130)
+        written.append(args.png)
+    if df.attrs.get("interrupted"):
+        from .cli import interrupted_exit
+        return interrupted_exit(len(df), df.attrs["settings_total"], "settings", written)
     print(f"wrote {args.csv} and {args.png}")
     return 0

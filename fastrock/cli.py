@@ -9,6 +9,21 @@ import time
 import numpy as np
 
 
+#: Exit code of a command stopped by Ctrl-C (128 + SIGINT), in every command.
+EXIT_INTERRUPTED = 130
+
+
+def interrupted_exit(done, total, what="runs", written=()):
+    """Close a command that Ctrl-C stopped: one line on stderr naming how many
+    of the ``total`` ``what`` finished and the files written with them (the
+    command writes its table and figure of the finished part before calling
+    this).  Returns EXIT_INTERRUPTED."""
+    files = [str(f) for f in written if f]
+    tail = f"; wrote {' and '.join(files)} with them" if files and done else "; nothing written"
+    print(f"fastrock: interrupted: {done} of {total} {what} finished{tail}", file=sys.stderr)
+    return EXIT_INTERRUPTED
+
+
 def _body(args):
     from .bodies import FlexibleBody, RigidBlock
     if getattr(args, "omega_n_over_p", None) is not None:
@@ -85,6 +100,7 @@ def cmd_spectrum(args):
     df = overturning_spectrum(body, amps, freqs, sign=signs, pulse=args.pulse, wall=wall, friction=_friction(args),
                               rtol=args.rtol, atol=args.atol, dt=args.dt, progress=not args.quiet)
     el = time.perf_counter() - t0
+    n_total = len(signs) * amps.size * freqs.size
     df.to_csv(args.csv, index=False)
     plt = __import__("matplotlib.pyplot").pyplot
     fig, axes = plt.subplots(1, len(signs), figsize=(6.2 * len(signs), 4.8), squeeze=False,
@@ -93,9 +109,14 @@ def cmd_spectrum(args):
         plot_spectrum(df[df["sign"] == s], ax=ax,
                       title=f"{args.pulse} pulse, sign {s:+d}; alpha={body.alpha:.3f}, p={body.p:.3f}, "
                             f"e={body.e:.3f}" + ("" if wall is None else f", wall d={wall.gap} m"))
+        if df.attrs.get("interrupted"):   # the whole grid's axes, the cells not run left blank
+            ax.set_xlim(freqs[0], freqs[-1])
+            ax.set_ylim(amps[0], amps[-1])
     fig.savefig(args.png, dpi=130)
     counts = df["outcome"].value_counts().to_dict()
     print(f"{len(df)} runs in {el:.2f} s ({len(df) / el:,.0f} runs/s), outcomes {counts}")
+    if df.attrs.get("interrupted"):
+        return interrupted_exit(len(df), n_total, "runs", (args.csv, args.png))
     print(f"wrote {args.png} and {args.csv}")
     return 0
 
@@ -202,6 +223,11 @@ def main(argv=None):
     except ValueError as exc:
         print(f"fastrock: error: {exc}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        # commands with partial results (sweeps, studies) write them and return 130 themselves
+        print(f"fastrock: interrupted: '{args.command}' stopped before it finished; nothing written",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
 
 
 if __name__ == "__main__":

@@ -54,8 +54,13 @@ def plot_spectrum(df, ax=None, x="frequency_ratio", y="amplitude_ratio", title=N
     xi = np.searchsorted(xs, df[x].to_numpy())
     yi = np.searchsorted(ys, df[y].to_numpy())
     Z[yi, xi] = [code[o] for o in df["outcome"]]
-    cmap = ListedColormap([OUTCOME_COLORS[k] for k in names])
-    ax.pcolormesh(xs, ys, Z, cmap=cmap, vmin=-0.5, vmax=len(names) - 0.5, shading="nearest")
+    # an interrupted sweep leaves cells that never ran: drawn blank, named in the legend
+    not_run = bool(np.isnan(Z).any())
+    if Z.size:
+        cmap = ListedColormap([OUTCOME_COLORS[k] for k in names])
+        ax.pcolormesh(xs, ys, Z, cmap=cmap, vmin=-0.5, vmax=len(names) - 0.5, shading="nearest")
+    else:
+        ax.text(0.5, 0.5, "no run finished", transform=ax.transAxes, ha="center", va="center")
     labels = {"frequency_ratio": r"$\omega_p/p$", "amplitude_ratio": r"$a_p/(g\tan\alpha)$",
               "frequency_hz": "f [Hz]", "amplitude_g": "A [g]"}
     ax.set_xlabel(labels.get(x, x))
@@ -64,8 +69,11 @@ def plot_spectrum(df, ax=None, x="frequency_ratio", y="amplitude_ratio", title=N
         ax.set_title(title)
     if legend:
         present = [k for k in names if (df["outcome"] == k).any()]
-        ax.legend(handles=[Patch(color=OUTCOME_COLORS[k], label=OUTCOME_LABELS[k]) for k in present],
-                  loc="upper left", fontsize=8, framealpha=0.9)
+        handles = [Patch(color=OUTCOME_COLORS[k], label=OUTCOME_LABELS[k]) for k in present]
+        if not_run:
+            handles.append(Patch(facecolor="white", edgecolor="0.5", label="not run (interrupted)"))
+        if handles:
+            ax.legend(handles=handles, loc="upper left", fontsize=8, framealpha=0.9)
     return fig
 
 

@@ -921,6 +921,10 @@ def _cli_rocking_spectrum(args):
     fig = plot_rocking_spectrum(table, title=f"{len(records)} record(s), "
                                              f"{args.n_sizes}x{args.n_slenderness} blocks")
     fig.savefig(args.png, dpi=130)
+    if table.attrs.get("interrupted"):
+        from .cli import interrupted_exit
+        return interrupted_exit(int((runs["outcome"] != "unfinished").sum()), len(runs), "runs",
+                                (args.csv, args.png))
     print(f"wrote {args.csv} and {args.png}")
     return 0
 

@@ -1404,6 +1404,10 @@ def _cli_study(args):
     print(f"overturning fragility against {im} (theta, beta; 90% bootstrap interval of theta):")
     print(pd.DataFrame(rows, columns=["body", "variant", "theta", "beta", "theta 90%"]).to_string(
         index=False))
+    if a["interrupted"]:
+        from .cli import interrupted_exit
+        return interrupted_exit(a["chunks_skipped"] + a["chunks_run"], a["n_chunks"], "chunks",
+                                (output,))
     return 0
 
 
