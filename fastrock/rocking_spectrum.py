@@ -194,11 +194,13 @@ def parse_walls(text):
     return _as_walls([w for w in text.split(",")])
 
 
-def _read_one(path, unit=None, dt=None):
+def _read_one(path, unit=None, dt=None, **layout):
     """read_record, with ``unit``/``dt`` used only where the file does not
-    state them (so one --unit serves a mixed set of files)."""
+    state them (so one --unit serves a mixed set of files); ``layout``
+    (``column=``, ``decimal=``) applies to every file."""
+    layout = {k: v for k, v in layout.items() if v is not None}
     try:
-        return read_record(path)
+        return read_record(path, **layout)
     except ValueError as exc:
         if unit is None and dt is None:
             raise
@@ -207,13 +209,13 @@ def _read_one(path, unit=None, dt=None):
              if all(v is not None for v in kw.values())]
     for kw in tries:
         try:
-            return read_record(path, **kw)
+            return read_record(path, **kw, **layout)
         except ValueError as exc:
             first = exc if kw is tries[0] else first
     raise first
 
 
-def load_records(records, unit=None, dt=None):
+def load_records(records, unit=None, dt=None, *, column=None, decimal=None):
     """Records as a list of GroundMotion with unique names.
 
     Parameters
@@ -224,6 +226,8 @@ def load_records(records, unit=None, dt=None):
         Unit of files whose header does not state it ('g', 'm/s2', ...).
     dt : float, optional
         Time step [s] of single-column files.
+    column, decimal : optional
+        As in :func:`fastrock.read_record`, for every file.
     """
     if records is None:
         records = [load_default_record()]
@@ -234,7 +238,7 @@ def load_records(records, unit=None, dt=None):
         if isinstance(r, GroundMotion):
             out.append(r)
         elif isinstance(r, (str, os.PathLike)):
-            out.append(_read_one(Path(r), unit, dt))
+            out.append(_read_one(Path(r), unit, dt, column=column, decimal=decimal))
         elif hasattr(r, "samples_si"):     # SampledMotion
             if getattr(r, "t_start", 0.0) != 0.0:
                 raise ValueError("records must start at t = 0 (SampledMotion.t_start != 0)")
@@ -802,7 +806,7 @@ DEFAULT_RECORD_BLOCK = (0.3, 1.5)
 
 
 def _cli_record(args):
-    rec = _cli_one_record(args.file, args.unit, args.dt)
+    rec = _cli_one_record(args.file, args.unit, args.dt, args)
     body = _cli_body(args)
     wall = _cli_wall(args)
     fixed = args.dt_fixed is not None and args.dt_fixed.strip().lower() == "record"
@@ -865,10 +869,21 @@ def _float_arg(name, text):
         raise ValueError(f"{name} must be a number or 'record', got {text!r}") from None
 
 
-def _cli_one_record(path, unit, dt):
+def _column_arg(text):
+    if text is None or text == "all":
+        return text
+    try:
+        return int(text)
+    except ValueError:
+        raise ValueError(f"--column must be an integer (0-based, negative from the end) or 'all', "
+                         f"got {text!r}") from None
+
+
+def _cli_one_record(path, unit, dt, args=None):
     if path is None:
         return load_default_record()
-    return _read_one(Path(path), unit, dt)
+    return _read_one(Path(path), unit, dt, column=_column_arg(getattr(args, "column", None)),
+                     decimal=getattr(args, "decimal", None))
 
 
 def _cli_body(args):
@@ -895,7 +910,8 @@ def _cli_wall(args):
 
 def _cli_rocking_spectrum(args):
     import time
-    records = load_records(args.files or None, args.unit, args.dt)
+    records = load_records(args.files or None, args.unit, args.dt, column=_column_arg(args.column),
+                           decimal=args.decimal)
     walls = parse_walls(args.walls) if args.walls else None
     s = np.linspace(args.slenderness_min, args.slenderness_max, args.n_slenderness)
     b = np.linspace(args.b_min, args.b_max, args.n_sizes)
@@ -933,6 +949,11 @@ def _add_record_options(p):
     p.add_argument("--unit", help="acceleration unit of files whose header does not state it "
                                   "(g, m/s2, cm/s2/gal, mm/s2)")
     p.add_argument("--dt", type=float, help="time step [s] of single-column files")
+    p.add_argument("--column", help="data column holding the acceleration in files with several "
+                                    "columns (0-based, negative from the end), or 'all' for one "
+                                    "record wrapped over rows (default: refuse such files)")
+    p.add_argument("--decimal", choices=(".", ","), help="decimal mark of the files (default '.'; "
+                                                         "decimal commas are refused unless ',')")
 
 
 def add_subcommands(subparsers):

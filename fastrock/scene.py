@@ -145,10 +145,10 @@ def _excitation(d, base, section):
                                           "frequency_unit", "t_start", "duration"}))
     if kind == "record":
         from .records import load_default_record, read_record
-        d = _only(d, section, {"file", "unit", "dt", "scale", "pga_g", "t_start"})
+        d = _only(d, section, {"file", "unit", "dt", "scale", "pga_g", "t_start", "column", "decimal"})
         f = d.get("file")
-        rec = load_default_record() if f in (None, "default") else read_record(base / f, unit=d.get("unit"),
-                                                                                 dt=d.get("dt"))
+        rec = load_default_record() if f in (None, "default") else read_record(
+            base / f, unit=d.get("unit"), dt=d.get("dt"), column=d.get("column"), decimal=d.get("decimal", "."))
         scale = V.finite("scale", d.get("scale", 1.0))
         if "pga_g" in d:
             scale = V.positive("pga_g", d["pga_g"]) / rec.pga_g

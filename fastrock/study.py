@@ -158,7 +158,8 @@ class Study:
     records : sequence
         File paths (any format :func:`fastrock.records.read_record` reads;
         ``"default"`` is the packaged El Centro record), :class:`GroundMotion`
-        objects, or dicts ``{"file": ..., "unit": ..., "dt": ...}``.
+        objects, or dicts ``{"file": ..., "unit": ..., "dt": ...}`` (also
+        ``"column"`` and ``"decimal"``, as in :func:`fastrock.read_record`).
     bodies : sequence of RigidBlock or FlexibleBody
     levels : sequence of float
         Intensity levels, > 0, in ``measure``.
@@ -204,7 +205,7 @@ class Study:
         Top-level keys ``name``, ``measure``, ``levels`` (a list, or a table
         ``{start, stop, num}`` for evenly spaced levels), ``t_after``,
         ``early_exit``, ``records`` (paths or globs relative to the file,
-        ``"default"``, or tables ``{file, unit, dt}``), ``unit``, ``dt``;
+        ``"default"``, or tables ``{file, unit, dt, column, decimal}``), ``unit``, ``dt``;
         arrays of tables ``[[bodies]]`` (as a scene's ``[body]``; a key given
         a list expands to the product of all its values) and ``[[variants]]``
         (``name``, ``wall = {gap, side, height, restitution}``); tables
@@ -242,7 +243,7 @@ class Study:
         records = []
         for r in data["records"]:
             if isinstance(r, dict):
-                r = dict(_only(dict(r), "records", {"file", "unit", "dt"}))
+                r = dict(_only(dict(r), "records", {"file", "unit", "dt", "column", "decimal"}))
                 f = r["file"]
                 r["file"] = f if f == "default" else str(base / f)
                 records.append(r)
@@ -388,8 +389,10 @@ def _load(records, unit, dt):
         if isinstance(r, GroundMotion):
             out.append(r)
             continue
+        layout = {}
         if isinstance(r, dict):
             f, u, d = r.get("file"), r.get("unit", unit), r.get("dt", dt)
+            layout = {k: r[k] for k in ("column", "decimal") if k in r}
         elif isinstance(r, (str, os.PathLike)):
             f, u, d = r, unit, dt
         else:
@@ -402,7 +405,7 @@ def _load(records, unit, dt):
         if not p.is_file():
             raise StudyError(f"record file not found: {p}")
         try:
-            out.append(_read_one(p, u, d))
+            out.append(_read_one(p, u, d, **layout))
         except ValueError as exc:
             raise StudyError(f"cannot read record {p}: {exc}") from None
     for r in out:

@@ -376,3 +376,26 @@ def test_numpy_integer_column_and_single_column(tmp_path):
     for column in (0, -1, np.int64(0), None):
         gm = _no_warning_read(p, unit="g", dt=DT, column=column)
         np.testing.assert_allclose(gm.acc / G_STANDARD, ACC_G, atol=1e-6)
+
+
+def test_column_and_decimal_reach_every_entry_point(tmp_path, capsys):
+    """The CLI (--column, --decimal), a TOML scene and a study's record table
+    pass the options on to read_record."""
+    from fastrock import cli
+    from fastrock.scene import Scene
+    from fastrock.study import _load
+    p = _write(tmp_path, "three.txt", _three_columns(time_first=True))
+    q = _write(tmp_path, "comma.txt", "".join(f"{_comma(v)}\n" for v in ACC_G))
+    assert cli.main(["record", str(p), "--unit", "g", "--png", str(tmp_path / "r.png")]) == 2
+    assert "column=K" in capsys.readouterr().err
+    assert cli.main(["record", str(p), "--unit", "g", "--column", "1", "--png", str(tmp_path / "r.png")]) == 0
+    assert cli.main(["record", str(q), "--unit", "g", "--dt", str(DT), "--decimal", ",",
+                     "--png", str(tmp_path / "q.png")]) == 0
+    assert cli.main(["record", str(p), "--unit", "g", "--column", "x"]) == 2
+    assert "--column must be an integer" in capsys.readouterr().err
+    scene = Scene.from_dict({"body": {"b": 0.2, "h": 1.0},
+                             "excitation": {"type": "record", "file": "three.txt", "unit": "g", "column": 1}},
+                            base=tmp_path)
+    assert scene.excitation.acc.size == ACC_G.size
+    (rec,) = _load([{"file": str(q), "unit": "g", "dt": DT, "decimal": ","}], None, None)
+    np.testing.assert_allclose(rec.acc / G_STANDARD, ACC_G, atol=1e-6)
