@@ -42,7 +42,6 @@ import pandas as pd
 from . import _validate as V
 from . import excitation as X
 from .bodies import RigidBlock
-from .models import KernelSpec
 from .outcomes import outcome_of, status_of
 from .simulate import SimulationResult, _ground_at, events_frame, metrics_dict, run_inputs
 from .solver import DEFAULT_T_AFTER, make_solver
@@ -287,18 +286,10 @@ class LinearVibration:
 
 
 FOUNDATIONS = (TwoSpringFoundation, SwitchingFoundation, LinearVibration)
-_STATE_NAMES = {
-    "two_spring": ("y", "y_dot", "theta", "theta_dot"),
-    "switching": ("theta", "theta_dot"),
-    "linear_sdof": ("theta", "theta_dot"),
-}
 
 
-def foundation_spec(body, foundation, mass=1.0):
-    """KernelSpec (kernel name, parameter vector) and the block's mass properties."""
-    if not isinstance(foundation, FOUNDATIONS):
-        raise ValueError(f"foundation must be a TwoSpringFoundation, SwitchingFoundation or "
-                         f"LinearVibration, got {type(foundation).__name__}")
+def foundation_par(body, foundation, mass=1.0):
+    """Parameter vector of a block on a foundation (registry ``build_par``)."""
     blk = block_inertia(body, mass)
     par = np.zeros(N_PAR)
     par[0] = body.alpha          # rigid layout: alpha, p, e, g, theta_over
@@ -314,8 +305,16 @@ def foundation_spec(body, foundation, mass=1.0):
     par[P_I_0] = blk.I_0
     par[P_EF] = 1.0
     foundation.fill_par(par, blk)
-    names = _STATE_NAMES[foundation.kernel]
-    return KernelSpec(foundation.kernel, "foundation", len(names), par, names), blk
+    return par
+
+
+def foundation_spec(body, foundation, mass=1.0):
+    """KernelSpec (registry entry, parameter vector) and the block's mass properties."""
+    from .registry import select
+    if not isinstance(body, RigidBlock):
+        raise ValueError(f"foundation models carry a RigidBlock, got {type(body).__name__}")
+    spec = select(body, foundation=foundation, mass=mass)
+    return spec, block_inertia(body, mass)
 
 
 # ------------------------------------------------------------------------- simulation

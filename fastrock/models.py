@@ -1,51 +1,16 @@
-"""Choose the smallest kernel a scene needs and build its parameter vector.
+"""Parameter vectors of the rigid, wall, friction and flexible models, and
+:func:`select`, the scene-to-kernel choice of :mod:`fastrock.registry`.
 
 A kernel module is imported only when a scene needs it, so a rigid scene
 never imports (let alone compiles) the wall, flexible or friction kernels.
 """
 from __future__ import annotations
 
-import importlib
-from dataclasses import dataclass
-
 import numpy as np
 
 from .bodies import IMPACT_MAPS, FlexibleBody, RigidBlock
 from .friction import LIFT_OFF
-
-
-@dataclass(frozen=True)
-class KernelSpec:
-    name: str          # e.g. "rigid", "rigid_wall"
-    module: str        # fastrock.kernels.<module>
-    n_state: int
-    par: np.ndarray
-    state_names: tuple
-    theta_index: int = 0
-
-    @property
-    def flexible(self):
-        return self.name.startswith("flexible")
-
-    @property
-    def friction(self):
-        return self.name.endswith("friction")
-
-    @property
-    def slide_index(self):
-        """Index of d in the state (friction kernels), else None."""
-        return self.state_names.index("d") if self.friction else None
-
-    def load(self):
-        return importlib.import_module(f"fastrock.kernels.{self.module}")
-
-    @property
-    def simulate(self):
-        return getattr(self.load(), f"{self.name}_simulate")
-
-    @property
-    def sweep(self):
-        return getattr(self.load(), f"{self.name}_sweep")
+from .registry import KernelSpec  # noqa: F401  (re-exported)
 
 
 def rigid_par(body: RigidBlock):
@@ -116,37 +81,9 @@ def rigid_friction_par(body: RigidBlock, friction):
     return par
 
 
-def select(body, wall=None, friction=None):
+def select(body, wall=None, friction=None, foundation=None, mass=1.0):
     """KernelSpec for a body and its contact effects (the smallest kernel:
-    no wall, infinite friction or a rigid body costs nothing)."""
-    if friction is not None:
-        from .friction import Friction
-        if not isinstance(friction, Friction):
-            raise ValueError(f"friction must be a fastrock.Friction, got {type(friction).__name__}")
-        if not friction.sliding_possible:
-            friction = None
-    if friction is not None:
-        if wall is not None:
-            raise ValueError("friction= together with wall= is not available yet")
-        if isinstance(body, FlexibleBody):
-            return KernelSpec("flexible_friction", "flexible_friction", 6, flexible_friction_par(body, friction),
-                              ("u", "u_dot", "theta", "theta_dot", "d", "d_dot"), theta_index=2)
-        if not isinstance(body, RigidBlock):
-            raise ValueError(f"body must be a fastrock body (RigidBlock, ...), got {type(body).__name__}")
-        return KernelSpec("rigid_friction", "friction", 4, rigid_friction_par(body, friction),
-                          ("theta", "theta_dot", "d", "d_dot"))
-    if isinstance(body, RigidBlock):
-        par = rigid_par(body)
-        if wall is None:
-            return KernelSpec("rigid", "rigid", 2, par, ("theta", "theta_dot"))
-        from .wall import Wall
-        if not isinstance(wall, Wall):
-            raise ValueError(f"wall must be a fastrock.Wall, got {type(wall).__name__}")
-        wall.fill_par(par, body)
-        return KernelSpec("rigid_wall", "wall", 2, par, ("theta", "theta_dot"))
-    if isinstance(body, FlexibleBody):
-        if wall is not None:
-            raise ValueError("wall= is not available for FlexibleBody yet")
-        return KernelSpec("flexible", "flexible", 4, flexible_par(body), ("u", "u_dot", "theta", "theta_dot"),
-                          theta_index=2)
-    raise ValueError(f"body must be a fastrock body (RigidBlock, ...), got {type(body).__name__}")
+    no wall, infinite friction or a rigid body costs nothing); see
+    :func:`fastrock.registry.select`."""
+    from .registry import select as _select
+    return _select(body, wall, friction, foundation, mass)

@@ -33,6 +33,8 @@ class Scene:
     vertical: object = None
     wall: object = None
     friction: object = None
+    foundation: object = None
+    mass: float = 1.0
     theta0: float = 0.0
     dtheta0: float = 0.0
     duration: float | None = None
@@ -52,6 +54,8 @@ class Scene:
         out = []
         if isinstance(self.body, FlexibleBody):
             out.append("flexible")
+        if self.foundation is not None:
+            out.append(f"foundation:{self.foundation.model}")
         if self.wall is not None:
             out.append("wall")
         if self.friction is not None and self.friction.sliding_possible:
@@ -63,12 +67,14 @@ class Scene:
     @property
     def kernel(self):
         from .models import select
-        return select(self.body, self.wall, self.friction).name
+        return select(self.body, self.wall, self.friction, self.foundation, self.mass).name
 
     def run(self, **overrides):
         from .simulate import simulate
         kw = dict(vertical=self.vertical, wall=self.wall, friction=self.friction, theta0=self.theta0, dtheta0=self.dtheta0,
                   duration=self.duration, t_after=self.t_after, solver=self.solver)
+        if self.foundation is not None:
+            kw.update(foundation=self.foundation, mass=self.mass)
         kw.update(overrides)
         return simulate(self.body, self.excitation, **kw)
 
@@ -86,7 +92,8 @@ class Scene:
     @classmethod
     def from_dict(cls, data, base=None, name=""):
         base = Path(base or ".")
-        known = {"body", "excitation", "vertical", "wall", "friction", "solver", "run", "output", "name"}
+        known = {"body", "excitation", "vertical", "wall", "friction", "foundation", "solver", "run", "output",
+                 "name"}
         unknown = set(data) - known
         if unknown:
             raise ValueError(f"unknown scene section(s) {sorted(unknown)}; known: {sorted(known)}")
@@ -103,13 +110,16 @@ class Scene:
         if "friction" in data:
             from .friction import Friction
             friction = Friction(**_only(dict(data["friction"]), "friction", {"mu_s", "mu_k", "slide_tolerance", "lift_off"}))
+        foundation, mass = (_foundation(dict(data["foundation"]), body) if "foundation" in data
+                            else (None, 1.0))
         solver = Solver(**_only(dict(data.get("solver", {})), "solver",
                                 {"rtol", "atol", "dt", "max_steps", "max_step", "record_breakpoints",
                                  "eps_omega", "eps_t"}))
         run = _only(dict(data.get("run", {})), "run", {"theta0", "dtheta0", "duration", "t_after"})
         out = _only(dict(data.get("output", {})), "output", {"csv", "events", "png"})
         out = {k: str(base / v) for k, v in out.items()}
-        return cls(body=body, excitation=exc, vertical=vert, wall=wall, friction=friction, solver=solver,
+        return cls(body=body, excitation=exc, vertical=vert, wall=wall, friction=friction, foundation=foundation,
+                   mass=mass, solver=solver,
                    name=data.get("name", name), outputs=out, **run)
 
 
@@ -136,6 +146,36 @@ def _body(d):
                                                 "theta_over", "rotary_inertia_ratio", "mass", "base_mass_ratio",
                                                 "base_cm_height"}))
     raise ValueError(f"[body] type must be 'rigid' or 'flexible', got {kind!r}")
+
+
+_FOUNDATION_KEYS = {
+    "two-spring": ("TwoSpringFoundation", {"k_v", "c_v"}),
+    "switching": ("SwitchingFoundation", {"k_t", "c_t", "e_f"}),
+    "linear": ("LinearVibration", {"k_t", "c_t"}),
+}
+
+
+def _foundation(d, body):
+    """[foundation] type = "two-spring" | "switching" | "linear", with either the model's own
+    stiffnesses (k_v, c_v or k_t, c_t) or omega [rad/s] and zeta (``from_vibration``), plus
+    e_f (switching) and the block's mass [kg] (default 1)."""
+    from . import foundation as F
+    kind = d.pop("type", None)
+    if kind not in _FOUNDATION_KEYS:
+        raise ValueError(f"[foundation] type must be one of {sorted(_FOUNDATION_KEYS)}, got {kind!r}")
+    cls_name, own = _FOUNDATION_KEYS[kind]
+    cls = getattr(F, cls_name)
+    extra = {"e_f"} if kind == "switching" else set()
+    d = _only(d, "foundation", own | {"omega", "zeta", "mass"} | extra)
+    mass = V.positive("mass", d.pop("mass", 1.0))
+    if "omega" in d:
+        if own & set(d) - extra:
+            raise ValueError(f"[foundation]: give omega/zeta or {sorted(own - extra)}, not both")
+        kw = {k: d[k] for k in extra if k in d}
+        return cls.from_vibration(body, d["omega"], d.get("zeta", 0.0), mass=mass, **kw), mass
+    if "zeta" in d:
+        raise ValueError("[foundation]: zeta goes with omega")
+    return cls(**d), mass
 
 
 def _excitation(d, base, section):

@@ -114,9 +114,9 @@ class SimulationResult:
         return plot_history(self, **kw)
 
 
-def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, theta0=0.0, dtheta0=0.0,
-             duration=None, t_after=DEFAULT_T_AFTER, t_eval=None, solver=None, rtol=None,
-             atol=None, dt=None, early_exit=False, max_steps=None, record_breakpoints=None,
+def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, foundation=None, mass=1.0,
+             theta0=0.0, dtheta0=0.0, duration=None, t_after=DEFAULT_T_AFTER, t_eval=None, solver=None,
+             rtol=None, atol=None, dt=None, early_exit=False, max_steps=None, record_breakpoints=None,
              history_capacity=None):
     """Simulate one body under a ground excitation (or free rocking).
 
@@ -133,6 +133,12 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     friction : Friction, optional
         Coulomb friction (sliding and slide-rocking); None or mu_s = inf:
         no sliding degree of freedom at all.
+    foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration, optional
+        A flexible foundation under a RigidBlock (rocking against vibration);
+        the run is :func:`fastrock.foundation.simulate_foundation`'s, whose
+        result documents the extra history columns.
+    mass : float
+        Block mass [kg] with ``foundation``.
     theta0, dtheta0 : float
         Initial rotation [rad] and angular velocity [rad/s].
     duration : float, optional
@@ -154,7 +160,13 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         kw["max_steps"] = max_steps
     if record_breakpoints is not None:
         kw["record_breakpoints"] = record_breakpoints
-    spec = models.select(body, wall, friction)
+    spec = models.select(body, wall, friction, foundation, V.positive("mass", mass))
+    if foundation is not None:
+        from .foundation import simulate_foundation
+        return simulate_foundation(body, foundation, excitation, mass=mass, vertical=vertical, theta0=theta0,
+                                   dtheta0=dtheta0, duration=duration, t_after=t_after, t_eval=t_eval,
+                                   solver=make_solver(solver, rtol, atol, dt, **kw), allow_overturn=True,
+                                   history_capacity=history_capacity)
     solver = make_solver(solver, rtol, atol, dt, **kw)
     excitation = X.as_excitation(excitation)
     vertical = X.as_excitation(vertical)

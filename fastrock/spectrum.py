@@ -35,6 +35,10 @@ theta_end, theta_dot_end  state when the run stopped          [rad, rad/s]
 nfev                right-hand-side evaluations
 max_slide, residual_slide  max |d| and final d (with friction)  [m]
 time_sliding, time_slide_rocking, stick_slip  (with friction)
+time_rocking, time_contact  time lifted off / in full contact (flexible body, foundation)  [s]
+max_deformation     max |u|, the column's deflection (flexible body)  [m]
+max_deformation_ratio  max |u| / the deflection at uplift (flexible body)  [-]
+energy_gains        impacts that raised the kinetic energy (flexible body; pivot-switch map)
 lift_offs, time_unloaded  held lift-offs and their time (flexible body with friction)  [-, s]
 boundary            outcome changes when the tolerance is halved (boundary_check=True)
 """
@@ -60,7 +64,8 @@ def _signs(sign):
 
 
 def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, pulse="one-sine",
-                         wall=None, friction=None, solver=None, rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
+                         wall=None, friction=None, foundation=None, mass=1.0, vertical=None, solver=None,
+                         rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
                          early_exit=True, chunk_size=None, progress=True, boundary_check=False):
     """Overturning spectrum of a body under pulses, in parallel.
 
@@ -78,6 +83,18 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     wall : Wall, optional
     friction : Friction, optional
         Adds the outcome "slide" and the columns max_slide, residual_slide [m].
+    foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration, optional
+        The block stands on a flexible foundation instead of rigid ground
+        (``body`` a RigidBlock with b and h); every run starts at rest in
+        static equilibrium on it.  Adds the columns time_rocking and
+        time_contact [s].
+    mass : float
+        Block mass [kg] with ``foundation`` (the foundation's stiffnesses
+        are absolute).
+    vertical : Pulse, SampledMotion or GroundMotion, optional
+        Vertical ground acceleration, the same in every run (effective
+        gravity G = g + a_v); each run lasts until both excitations end,
+        plus ``t_after``.
     early_exit : bool
         Stop a run once its outcome is decided (exact; see README).
     progress : bool
@@ -99,7 +116,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     freqs = _grid(frequency_ratios, "frequency_ratios")
     if (freqs <= 0).any():
         raise ValueError("frequency_ratios must be > 0")
-    spec = models.select(body, wall, friction)
+    spec = models.select(body, wall, friction, foundation, V.positive("mass", mass))
+    vertical = X.as_excitation(vertical)
     signs = _signs(sign)
     t_after = V.non_negative("t_after", t_after)
     S, F, A = np.meshgrid(np.array(signs, float), freqs, amps, indexing="ij")
@@ -115,18 +133,31 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     HDR[:, L.X_OMEGA] = omega
     HDR[:, L.X_SIGN] = S
     HDR[:, L.X_DUR] = dur
+    smp = np.zeros(1)
+    t_vertical = 0.0
+    if vertical is not None:
+        vhdr, smp = X.to_header(body, None, vertical)
+        HDR[:, L.V_CHANNEL:] = vhdr[L.V_CHANNEL:]
+        t_vertical = X.end_time(body, None, vertical)
     opt = solver.options(0.0, early_exit)
     OPT = np.tile(opt, (n, 1))
-    OPT[:, L.O_T_END] = dur + t_after
+    OPT[:, L.O_T_END] = np.maximum(dur, t_vertical) + t_after
     PAR = np.tile(spec.par, (n, 1))
-    Y0 = np.zeros((n, spec.n_state))
-    status, MET, YF, done = run_sweep(spec.sweep, Y0, PAR, HDR, np.zeros(1), OPT, chunk_size, progress,
+    if foundation is not None:
+        from .foundation import block_inertia
+        Y0 = np.tile(foundation.initial_state(block_inertia(body, mass), 0.0, 0.0), (n, 1))
+    else:
+        Y0 = np.zeros((n, spec.n_state))
+    status, MET, YF, done = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, chunk_size, progress,
                                       label="runs")
     df = pd.DataFrame({
         "amplitude_ratio": A, "frequency_ratio": F, "sign": S.astype(int),
         "amplitude": amp, "amplitude_g": amp / body.g, "frequency_hz": omega / (2 * np.pi),
     })
     df = _add_results(df, status, MET, body, wall, friction if spec.friction else None)
+    if foundation is not None:
+        df["time_rocking"] = MET[:, L.M_T_ROCK]
+        df["time_contact"] = MET[:, L.M_T_CONTACT]
     df["theta_end"] = YF[:, spec.theta_index]
     df["theta_dot_end"] = YF[:, spec.theta_index + 1]
     df = df.iloc[:done].reset_index(drop=True)
@@ -140,7 +171,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
                 dataclasses.replace(solver, rtol=solver.rtol / 2,
                                     atol=(solver.atol if solver.atol is not None else solver.rtol * 1e-2) / 2))
         df2 = overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign, pulse=pulse, wall=wall,
-                                   friction=friction, solver=half, t_after=t_after, early_exit=early_exit,
+                                   friction=friction, foundation=foundation, mass=mass, vertical=vertical,
+                                   solver=half, t_after=t_after, early_exit=early_exit,
                                    chunk_size=chunk_size, progress=progress)
         m = min(len(df), len(df2))
         df = df.iloc[:m].copy()
