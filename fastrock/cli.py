@@ -53,6 +53,18 @@ def _friction(args):
     return Friction(args.mu_s, args.mu_k, lift_off=args.lift_off)
 
 
+def _foundation(args, body):
+    kind = getattr(args, "foundation", None)
+    if kind is None:
+        return None
+    from . import foundation as F
+    if args.foundation_omega is None:
+        raise ValueError("--foundation needs --foundation-omega (rocking vibration in full contact, rad/s)")
+    cls = {"two-spring": F.TwoSpringFoundation, "switching": F.SwitchingFoundation,
+           "linear": F.LinearVibration}[kind]
+    return cls.from_vibration(body, args.foundation_omega, args.foundation_zeta, mass=args.mass)
+
+
 def _add_body_options(p):
     g = p.add_argument_group("body (rigid block)")
     g.add_argument("--alpha", type=float, default=0.25, help="slenderness angle alpha [rad] (default 0.25)")
@@ -73,6 +85,13 @@ def _add_body_options(p):
                         "toward it (default -1)")
     w.add_argument("--wall-height", type=float, help="wall height [m] (default: taller than the block)")
     w.add_argument("--wall-restitution", type=float, default=1.0, help="wall restitution e_w (default 1)")
+    fd = p.add_argument_group("flexible foundation (rigid block with --b/--h)")
+    fd.add_argument("--foundation", choices=("two-spring", "switching", "linear"),
+                    help="stand the block on a flexible foundation (default: rigid ground)")
+    fd.add_argument("--foundation-omega", type=float,
+                    help="its small-amplitude rocking vibration in full contact [rad/s]")
+    fd.add_argument("--foundation-zeta", type=float, default=0.0, help="its damping ratio (default 0)")
+    fd.add_argument("--mass", type=float, default=1.0, help="block mass [kg] (default 1)")
     f = p.add_argument_group("friction (sliding)")
     f.add_argument("--mu-s", type=float, help="static friction coefficient (default: no sliding)")
     f.add_argument("--mu-k", type=float, help="kinetic friction coefficient (default mu_s)")
@@ -98,6 +117,7 @@ def cmd_spectrum(args):
     freqs = np.linspace(args.freq_min, args.freq_max, args.n_freq)
     t0 = time.perf_counter()
     df = overturning_spectrum(body, amps, freqs, sign=signs, pulse=args.pulse, wall=wall, friction=_friction(args),
+                              foundation=_foundation(args, body), mass=args.mass,
                               rtol=args.rtol, atol=args.atol, dt=args.dt, progress=not args.quiet)
     el = time.perf_counter() - t0
     n_total = len(signs) * amps.size * freqs.size
@@ -127,8 +147,8 @@ def cmd_simulate(args):
     body = _body(args)
     pulse = Pulse(amplitude=args.amplitude, frequency=args.frequency, sign=args.sign, kind=args.pulse,
                   amplitude_unit=args.amplitude_unit, frequency_unit=args.frequency_unit)
-    r = simulate(body, pulse, wall=_wall(args), friction=_friction(args), theta0=args.theta0, rtol=args.rtol, atol=args.atol,
-                 dt=args.dt, duration=args.duration)
+    r = simulate(body, pulse, wall=_wall(args), friction=_friction(args), foundation=_foundation(args, body),
+                 mass=args.mass, theta0=args.theta0, rtol=args.rtol, atol=args.atol, dt=args.dt, duration=args.duration)
     m = r.metrics
     print(f"outcome {r.outcome} ({r.status}); kernel {r.kernel}")
     print(f"max |theta|/alpha = {m['max_rotation_ratio']:.6g}, impacts = {m['impacts']}, "

@@ -313,4 +313,5 @@ for _name, _states, _what in (
         columns=_FOUNDATION_COLUMNS,
         outcomes=("safe", "mode1", "mode2", "flight", "failed") if _name != "linear_sdof"
         else ("safe", "failed"),
-        cli_options=_RIGID_CLI, toml_keys=("body", "foundation"), summary=_what))
+        cli_options=_RIGID_CLI + ("--foundation", "--foundation-omega", "--foundation-zeta", "--mass"),
+        toml_keys=("body", "foundation"), summary=_what))

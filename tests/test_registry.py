@@ -191,3 +191,19 @@ def test_a_toml_scene_runs_a_foundation(tmp_path):
                        ({"type": "switching", "k_v": 1e6}, "unknown key")]:
         with pytest.raises(ValueError, match=match):
             Scene.from_dict({"body": {"b": 0.15, "h": 0.6}, "foundation": bad})
+
+
+def test_the_cli_runs_a_foundation_spectrum(tmp_path, capsys):
+    from fastrock import cli
+    import pandas as pd
+    out = [f"--png={tmp_path / 'f.png'}", f"--csv={tmp_path / 'f.csv'}", "--quiet"]
+    rc = cli.main(["spectrum", "--b", "0.15", "--h", "0.6", "--foundation", "two-spring", "--foundation-omega",
+                   "60", "--foundation-zeta", "0.05", "--mass", "100", "--n-amp", "4", "--n-freq", "3"] + out)
+    assert rc == 0
+    df = pd.read_csv(tmp_path / "f.csv")
+    fnd = TwoSpringFoundation.from_vibration(BLOCK, 60.0, 0.05, mass=100.0)
+    ref = overturning_spectrum(BLOCK, np.linspace(0.5, 8.0, 4), np.linspace(0.25, 10.0, 3), foundation=fnd,
+                               mass=100.0, progress=False)
+    assert list(df["outcome"]) == list(ref["outcome"])
+    assert cli.main(["spectrum", "--foundation", "linear"] + out) == 2
+    assert "--foundation needs --foundation-omega" in capsys.readouterr().err
