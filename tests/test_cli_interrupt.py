@@ -12,7 +12,6 @@ import signal
 import subprocess
 import sys
 import threading
-import time
 from importlib import resources
 
 import pandas as pd

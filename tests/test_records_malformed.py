@@ -6,7 +6,6 @@ refused or warned about; every case writes its file into tmp_path.
 
 from __future__ import annotations
 
-import os
 import warnings
 from pathlib import Path
 
@@ -23,14 +22,9 @@ from fastrock.records import (
 )
 
 
-def _records_dir() -> Path:
-    env = os.environ.get("FASTROCK_RECORDS_DIR")
-    if env:
-        return Path(env)
-    return Path(__file__).resolve().parents[2] / "shared" / "data" / "records"
+from shared_data import records_dir
 
-
-RECORDS = _records_dir()
+RECORDS = records_dir()
 
 DT = 0.01
 N = 40

@@ -11,7 +11,6 @@ import pytest
 from fastrock import FlexibleBody, Friction, Pulse, RigidBlock, SampledMotion, Wall, overturning_spectrum, simulate
 from fastrock import registry
 from fastrock.foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation, block_inertia
-from fastrock.kernels import layout as L
 
 BLOCK = RigidBlock.rectangle(0.15, 0.6)
 FLEX = FlexibleBody(0.2, 2.0, 10.0)

@@ -3,8 +3,6 @@ from __future__ import annotations
 
 import importlib
 import math
-import os
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -23,14 +21,9 @@ from fastrock.rocking_spectrum import (
     simulate_record, summarize_runs, upper_bound_beta)
 
 
-def _records_dir() -> Path:
-    env = os.environ.get("FASTROCK_RECORDS_DIR")
-    if env:
-        return Path(env)
-    return Path(__file__).resolve().parents[2] / "shared" / "data" / "records"
+from shared_data import records_dir
 
-
-RECORDS = _records_dir()
+RECORDS = records_dir()
 needs_records = pytest.mark.skipif(
     not RECORDS.is_dir(),
     reason=f"shared record folder {RECORDS} absent (set FASTROCK_RECORDS_DIR)",
