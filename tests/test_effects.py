@@ -37,6 +37,16 @@ PROBE = textwrap.dedent("""
         sc = Scene(fr.RigidBlock(0.2, 2.0), pulse, friction=fr.Friction(0.3))
     elif case == "flexible":
         sc = Scene(fr.FlexibleBody(0.2, 2.0, 9.0, 0.05), pulse)
+    elif case == "flexible-friction":
+        sc = Scene(fr.FlexibleBody(0.2, 2.0, 9.0, 0.05), pulse, friction=fr.Friction(0.5, lift_off="hold"))
+    elif case == "wall":
+        sc = Scene(fr.RigidBlock.rectangle(0.2, 1.0), pulse, wall=fr.Wall(gap=0.02))
+    elif case == "vertical":
+        sc = Scene(fr.RigidBlock(0.2, 2.0), pulse, vertical=fr.Pulse(0.2, 8.0, amplitude_unit="g",
+                                                                     frequency_unit="rad/s"))
+    elif case == "two-spring":
+        block = fr.RigidBlock.rectangle(0.2, 1.0)
+        sc = Scene(block, pulse, foundation=fr.TwoSpringFoundation.from_vibration(block, 60.0, 0.05))
     r = sc.run(duration=3.0)
     report.update(kernel=r.kernel, scene_kernel=sc.kernel, effects=list(sc.effects),
                   compiled=compiled(),
@@ -50,9 +60,13 @@ EXPECTED = {
     "friction-inf": ("rigid", [], "rigid_simulate"),
     "friction": ("rigid_friction", ["friction"], "rigid_friction_simulate"),
     "flexible": ("flexible", ["flexible"], "flexible_simulate"),
+    "flexible-friction": ("flexible_friction", ["flexible", "friction"], "flexible_friction_simulate"),
+    "wall": ("rigid_wall", ["wall"], "rigid_wall_simulate"),
+    "vertical": ("rigid", ["vertical"], "rigid_simulate"),
+    "two-spring": ("two_spring", ["foundation:two-spring"], "two_spring_simulate"),
 }
 MODEL_MODULES = {"fastrock.kernels.rigid", "fastrock.kernels.flexible", "fastrock.kernels.friction",
-                 "fastrock.kernels.wall", "fastrock.kernels.foundation"}
+                 "fastrock.kernels.wall", "fastrock.kernels.foundation", "fastrock.kernels.flexible_friction"}
 
 
 def probe(case, tmp_path):
@@ -74,5 +88,10 @@ def test_scene_runs_and_compiles_only_its_kernel(case, tmp_path):
     # (the flexible and friction kernels reuse helpers of the rigid module)
     needed = {"rigid": {"fastrock.kernels.rigid"},
               "rigid_friction": {"fastrock.kernels.rigid", "fastrock.kernels.friction"},
-              "flexible": {"fastrock.kernels.rigid", "fastrock.kernels.flexible"}}[kernel]
+              "flexible": {"fastrock.kernels.rigid", "fastrock.kernels.flexible"},
+              # the shared friction helpers (initial contact, slide tracking) live in kernels/friction.py
+              "flexible_friction": {"fastrock.kernels.rigid", "fastrock.kernels.flexible",
+                                    "fastrock.kernels.friction", "fastrock.kernels.flexible_friction"},
+              "rigid_wall": {"fastrock.kernels.rigid", "fastrock.kernels.wall"},
+              "two_spring": {"fastrock.kernels.rigid", "fastrock.kernels.foundation"}}[kernel]
     assert set(rep["modules"]) & MODEL_MODULES == needed
