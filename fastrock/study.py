@@ -168,7 +168,12 @@ class Study:
     variants : sequence of dict
         Scene variants, e.g. ``{"wall": None}`` (two-sided rocking) and
         ``{"wall": Wall(0.01)}``; the keys are ``"wall"`` (a Wall, a gap in m
-        or None) and ``"name"`` (label; default from the wall).
+        or None), ``"friction"`` (a Friction or a dict of its arguments),
+        ``"foundation"`` (a foundation object, or a dict as a scene's
+        ``[foundation]`` table, e.g. ``{"type": "two-spring", "omega": 40,
+        "zeta": 0.05}``, built for each body), ``"mass"`` (block mass [kg]
+        with a foundation, default 1) and ``"name"`` (label; default from
+        the effects).
     solver : Solver or dict, optional
         Integrator settings (default adaptive RK45, rtol 1e-8).
     t_after : float
@@ -208,7 +213,9 @@ class Study:
         ``"default"``, or tables ``{file, unit, dt, column, decimal}``), ``unit``, ``dt``;
         arrays of tables ``[[bodies]]`` (as a scene's ``[body]``; a key given
         a list expands to the product of all its values) and ``[[variants]]``
-        (``name``, ``wall = {gap, side, height, restitution}``); tables
+        (``name``, ``wall = {gap, side, height, restitution}``, ``friction = {mu_s, mu_k, ...}``,
+        ``foundation`` as a scene's ``[foundation]`` table without ``mass``, and ``mass`` [kg]
+        with a foundation); tables
         ``[solver]`` and ``[run]`` (``output``, ``backend``, ``scheduler``,
         ``chunk_size``; a relative output is relative to the file).
         """
@@ -271,7 +278,7 @@ class Study:
                     raise StudyError(f"[[bodies]] {d}: {exc}") from None
         variants = []
         for v in data.get("variants", [{"name": "two-sided"}]):
-            v = dict(_only(dict(v), "variants", {"name", "wall"}))
+            v = dict(_only(dict(v), "variants", VARIANT_KEYS))
             if isinstance(v.get("wall"), dict):
                 from .wall import Wall
                 v["wall"] = Wall(**_only(dict(v["wall"]), "wall",
@@ -317,7 +324,7 @@ class Study:
             if not isinstance(b, (RigidBlock, FlexibleBody)):
                 raise StudyError(f"bodies[{i}] must be a RigidBlock or FlexibleBody, "
                                  f"got {type(b).__name__}")
-        names, walls = _variants(self.variants)
+        names, walls, effects = _variants(self.variants)
         solver = self.solver
         if solver is None:
             solver = Solver()
@@ -329,17 +336,21 @@ class Study:
             t_after = V.non_negative("t_after", self.t_after)
         except ValueError as exc:
             raise StudyError(str(exc)) from None
-        specs = {}
+        from .foundation import block_inertia as _block_inertia
+        specs, y0s = {}, {}
         for bi, body in enumerate(bodies):
             for vi, wall in enumerate(walls):
                 try:
-                    specs[bi, vi] = models.select(body, wall)
-                except ValueError as exc:
+                    friction, foundation, mass = _resolve_effects(body, effects[vi])
+                    specs[bi, vi] = models.select(body, wall, friction, foundation, mass)
+                except (TypeError, ValueError) as exc:
                     raise StudyError(f"body {bi} with variant {names[vi]!r}: {exc}") from None
+                y0s[bi, vi] = (np.zeros(specs[bi, vi].n_state) if foundation is None else
+                               foundation.initial_state(_block_inertia(body, mass), 0.0, 0.0))
         prep = _Prepared(records=records, bodies=bodies, body_labels=_body_labels(bodies),
                          variant_names=names, walls=walls, levels=levels, measure=self.measure,
                          solver=solver, t_after=t_after, early_exit=bool(self.early_exit),
-                         specs=specs)
+                         specs=specs, effects=effects, y0s=y0s)
         prep.hash = _study_hash(prep)
         return prep
 
@@ -361,6 +372,8 @@ class _Prepared:
     t_after: float
     early_exit: bool
     specs: dict
+    effects: list = field(default_factory=list)    # per variant: friction, foundation, mass
+    y0s: dict = field(default_factory=dict)        # (body, variant) -> initial state
     hash: str = ""
 
 
@@ -421,22 +434,65 @@ def _variants(variants):
         variants = [variants]
     if not variants:
         raise StudyError("variants is empty (use [{'wall': None}] for two-sided rocking)")
-    names, walls = [], []
+    names, walls, effects = [], [], []
     for i, v in enumerate(variants):
         if not isinstance(v, dict):
             raise StudyError(f"variants[{i}] must be a dict such as {{'wall': None}}, got {v!r}")
-        extra = set(v) - {"wall", "name"}
+        extra = set(v) - VARIANT_KEYS
         if extra:
-            raise StudyError(f"variants[{i}]: unknown key(s) {sorted(extra)}; known: name, wall")
+            raise StudyError(f"variants[{i}]: unknown key(s) {sorted(extra)}; known: "
+                             f"{', '.join(sorted(VARIANT_KEYS))}")
         try:
             (wall,) = _as_walls([v.get("wall")])
-        except ValueError as exc:
+            effects.append(_variant_effects(v))
+        except (TypeError, ValueError) as exc:
             raise StudyError(f"variants[{i}]: {exc}") from None
         walls.append(wall)
-        names.append(str(v.get("name") or _wall_label(wall)))
+        label = _wall_label(wall)
+        if effects[-1].get("friction") is not None:
+            label += f", mu={effects[-1]['friction'].mu_s:g}"
+        if effects[-1].get("foundation") is not None:
+            fnd = effects[-1]["foundation"]
+            label += f", {fnd['type'] if isinstance(fnd, dict) else fnd.model} foundation"
+        names.append(str(v.get("name") or label))
     if len(set(names)) != len(names):
         raise StudyError(f"variant names must be distinct, got {names}")
-    return names, walls
+    return names, walls, effects
+
+
+#: Keys of a scene variant: its name and the effects it switches on.
+VARIANT_KEYS = {"name", "wall", "friction", "foundation", "mass"}
+
+
+def _variant_effects(v):
+    """A variant's friction (Friction), foundation (an object, or a scene-style table resolved
+    per body) and block mass [kg]; only the keys it gives."""
+    out = {}
+    fr = v.get("friction")
+    if fr is not None:
+        from .friction import Friction
+        out["friction"] = Friction(**fr) if isinstance(fr, dict) else fr
+    if v.get("foundation") is not None:
+        fnd = v["foundation"]
+        if isinstance(fnd, dict):
+            fnd = dict(fnd)
+            if "mass" in fnd:
+                raise ValueError("give the block mass as the variant's mass, not inside foundation")
+        out["foundation"] = fnd
+        out["mass"] = V.positive("mass", v.get("mass", 1.0))
+    elif "mass" in v:
+        raise ValueError("mass goes with a foundation")
+    return out
+
+
+def _resolve_effects(body, fx):
+    """The variant's effects for one body: a foundation table becomes its model object."""
+    fnd = fx.get("foundation")
+    mass = fx.get("mass", 1.0)
+    if isinstance(fnd, dict):
+        from .scene import _foundation
+        fnd, _mass = _foundation({**fnd, "mass": mass}, body)   # omega refers to this block's mass
+    return fx.get("friction"), fnd, mass
 
 
 def _body_labels(bodies):
@@ -463,6 +519,8 @@ def _canon(obj):
         d = {"__type__": type(obj).__name__}
         d.update({f.name: _canon(getattr(obj, f.name)) for f in dataclasses.fields(obj)})
         return d
+    if isinstance(obj, dict):
+        return {str(k): _canon(v) for k, v in sorted(obj.items())}
     if isinstance(obj, (list, tuple)):
         return [_canon(x) for x in obj]
     if isinstance(obj, np.ndarray):
@@ -479,7 +537,10 @@ def _study_hash(prep):
              "acc": hashlib.sha256(np.ascontiguousarray(r.acc, "<f8").tobytes()).hexdigest()}
             for r in prep.records]
     doc = {"format": FORMAT, "records": recs, "bodies": _canon(prep.bodies),
-           "variants": [[n, _canon(w)] for n, w in zip(prep.variant_names, prep.walls)],
+           # a variant with more than a wall adds its effects; wall-only hashes stay as they were
+           "variants": [[n, _canon(w)] + ([_canon(fx)] if fx else [])
+                        for n, w, fx in zip(prep.variant_names, prep.walls,
+                                            prep.effects or [{}] * len(prep.walls))],
            "levels": _canon(prep.levels), "measure": prep.measure, "solver": _canon(prep.solver),
            "t_after": repr(prep.t_after), "early_exit": prep.early_exit}
     text = json.dumps(doc, sort_keys=True, separators=(",", ":"))
@@ -584,7 +645,8 @@ class _Plan:
         OPT = np.tile(prep.solver.options(0.0, prep.early_exit), (m, 1))
         OPT[:, L.O_T_END] = HDR[:, L.X_DUR] + prep.t_after
         return {"chunk": chunk.id, "module": spec0.module, "kernel": spec0.name,
-                "rows": rows.astype(np.int64), "Y0": np.zeros((m, spec0.n_state)),
+                "rows": rows.astype(np.int64),
+                "Y0": np.array([prep.y0s[self.body[i], self.var[i]] for i in rows], float).reshape(m, -1),
                 "PAR": PAR, "HDR": HDR, "smp": smp, "OPT": OPT, "numba_threads": 0}
 
     def columns(self, chunk, result):
