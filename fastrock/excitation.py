@@ -195,6 +195,32 @@ def to_header(body, horizontal, vertical=None):
     return hdr, smp
 
 
+def match_components(horizontal, vertical, resample=False):
+    """The vertical excitation, checked against the horizontal one.
+
+    Two records (SampledMotion or GroundMotion) must share dt, length and
+    start: one recorded with another instrument or filtered differently is
+    refused rather than silently paired.  With ``resample=True`` the
+    vertical record is interpolated linearly onto the horizontal record's
+    samples (zero outside its own span, so vertical motion after the
+    horizontal record ends is dropped).
+    """
+    h, v = as_excitation(horizontal), as_excitation(vertical)
+    if not (isinstance(h, SampledMotion) and isinstance(v, SampledMotion)):
+        return v
+    if math.isclose(h.dt, v.dt, rel_tol=1e-12) and h.acc.size == v.acc.size and h.t_start == v.t_start:
+        return v
+    if not resample:
+        raise ValueError(
+            f"vertical: its record (dt = {v.dt:g} s, {v.acc.size} samples, t_start = {v.t_start:g} s) "
+            f"does not match the horizontal one (dt = {h.dt:g} s, {h.acc.size} samples, t_start = "
+            f"{h.t_start:g} s); pass resample_vertical=True to interpolate it onto the horizontal samples")
+    t_h = h.t_start + h.dt * np.arange(h.acc.size)
+    t_v = v.t_start + v.dt * np.arange(v.acc.size)
+    acc = np.interp(t_h, t_v, v.acc, left=0.0, right=0.0)
+    return SampledMotion(acc, h.dt, unit=v.unit, scale=v.scale, t_start=h.t_start, name=v.name)
+
+
 def end_time(body, horizontal, vertical=None):
     t = 0.0
     for exc in (as_excitation(horizontal), as_excitation(vertical)):

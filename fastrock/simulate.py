@@ -117,7 +117,7 @@ class SimulationResult:
 def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, foundation=None, mass=1.0,
              theta0=0.0, dtheta0=0.0, duration=None, t_after=DEFAULT_T_AFTER, t_eval=None, solver=None,
              rtol=None, atol=None, dt=None, early_exit=False, max_steps=None, record_breakpoints=None,
-             history_capacity=None):
+             history_capacity=None, resample_vertical=False):
     """Simulate one body under a ground excitation (or free rocking).
 
     Parameters
@@ -127,7 +127,10 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         Horizontal ground acceleration.  None: free rocking from
         (``theta0``, ``dtheta0``).
     vertical : Pulse, SampledMotion or GroundMotion, optional
-        Vertical ground acceleration a_v (effective gravity G = g + a_v).
+        Vertical ground acceleration a_v (effective gravity G = g + a_v).  A
+        vertical record beside a horizontal record must have the same dt,
+        length and start, unless ``resample_vertical=True`` (linear
+        interpolation onto the horizontal samples).
     wall : Wall, optional
         One-sided rocking against a rear wall.
     friction : Friction, optional
@@ -161,6 +164,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     if record_breakpoints is not None:
         kw["record_breakpoints"] = record_breakpoints
     spec = models.select(body, wall, friction, foundation, V.positive("mass", mass))
+    vertical = X.match_components(excitation, vertical, resample_vertical)
     if foundation is not None:
         from .foundation import simulate_foundation
         return simulate_foundation(body, foundation, excitation, mass=mass, vertical=vertical, theta0=theta0,

@@ -206,3 +206,20 @@ def test_the_cli_runs_a_foundation_spectrum(tmp_path, capsys):
     assert list(df["outcome"]) == list(ref["outcome"])
     assert cli.main(["spectrum", "--foundation", "linear"] + out) == 2
     assert "--foundation needs --foundation-omega" in capsys.readouterr().err
+
+
+def test_a_vertical_record_must_match_the_horizontal_one():
+    from fastrock.records import load_default_record
+    rec = load_default_record()
+    h = SampledMotion.from_record(rec)
+    v_same = SampledMotion(0.3 * rec.acc, rec.dt)
+    assert simulate(BLOCK, h, vertical=v_same, duration=3.0).status
+    v_other = SampledMotion(0.3 * rec.acc[::2], 2 * rec.dt)
+    with pytest.raises(ValueError, match=r"vertical: its record \(dt = 0.04 s, 780 samples.*resample_vertical=True"):
+        simulate(BLOCK, h, vertical=v_other)
+    # resampled: the same as giving the interpolated samples by hand
+    r = simulate(BLOCK, h, vertical=v_other, resample_vertical=True, duration=3.0)
+    t = rec.dt * np.arange(rec.acc.size)
+    by_hand = SampledMotion(np.interp(t, 2 * rec.dt * np.arange(780), 0.3 * rec.acc[::2], right=0.0), rec.dt)
+    ref = simulate(BLOCK, h, vertical=by_hand, duration=3.0)
+    np.testing.assert_equal(r.metrics, ref.metrics)   # NaN equals NaN
