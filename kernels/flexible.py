@@ -8,9 +8,10 @@ oscillates) or rocking about pivot s, with the exact equations of 3.4,
 including an optional rigid base (mass m_b, inertia I_b, CM height h_b; the
 classic model has m_b = 0).
 
-Events in full contact: 0 uplift (signed test of 3.3, either corner),
-1/2 extrema of u (observers), 3 flight.  While rocking: 0 impact s*theta,
-1 overturn, 2 peak s*theta', 3 pass alpha, 4/5 extrema of u, 6 flight.
+Events (ids C_* in full contact, R_* while rocking): C_UPLIFT (signed test
+of 3.3, either corner), C_U_MAX/C_U_MIN extrema of u (observers), C_FLIGHT;
+R_IMPACT s*theta, R_OVERTURN, R_PEAK s*theta', R_PASS_ALPHA, R_U_MAX/R_U_MIN
+extrema of u, R_FLIGHT.
 """
 import math
 
@@ -47,6 +48,19 @@ N_PAR = 14
 IMPACT_FULL_CONTACT = 0
 IMPACT_PIVOT_SWITCH = 1
 N_EVENTS = 7
+# event ids in full contact
+C_UPLIFT = 0        # signed uplift test of 3.3, either corner (terminal)
+C_U_MAX = 1         # u' = 0 from above: extremum of u (observer)
+C_U_MIN = 2         # u' = 0 from below (observer)
+C_FLIGHT = 3        # G = g + a_v reaches 0 (terminal)
+# event ids while rocking
+R_IMPACT = 0        # s theta reaches 0 (terminal)
+R_OVERTURN = 1      # s theta reaches theta_over (terminal)
+R_PEAK = 2          # s theta' reaches 0 (observer)
+R_PASS_ALPHA = 3    # s theta passes alpha (observer)
+R_U_MAX = 4         # extrema of u (observers)
+R_U_MIN = 5
+R_FLIGHT = 6        # G reaches 0 (terminal)
 
 
 @jit
@@ -134,31 +148,31 @@ def event(k, t, y, par, disc, hdr, smp):
     rocking = disc[D_MODE] == MODE_ROCK
     s = disc[D_PIVOT]
     if not rocking:
-        if k == 0:
+        if k == C_UPLIFT:
             gp, gdp = uplift_margin(t, y, 1, par, hdr, smp)
             gm, gdm = uplift_margin(t, y, -1, par, hdr, smp)
             if gp <= gm:
                 return gp, gdp, True
             return gm, gdm, True
-        if k == 1 or k == 2:
-            sg = 1.0 if k == 1 else -1.0
+        if k == C_U_MAX or k == C_U_MIN:
+            sg = 1.0 if k == C_U_MAX else -1.0
             udd, _ = accelerations(t, y, s, False, par, hdr, smp)
             return sg * y[1], sg * udd, False
-        if k == 3:
+        if k == C_FLIGHT:
             _ag, _dag, av, dav = ground_rates(t, hdr, smp)
             return par[F_G] + av, dav, True
         return np.inf, 0.0, False
-    if k == 0:
+    if k == R_IMPACT:
         return s * y[2], s * y[3], True
-    if k == 1:
+    if k == R_OVERTURN:
         return par[F_THETA_OVER] - s * y[2], -s * y[3], True
-    if k == 2:
+    if k == R_PEAK:
         _udd, tdd = accelerations(t, y, s, True, par, hdr, smp)
         return s * y[3], s * tdd, False
-    if k == 3:
+    if k == R_PASS_ALPHA:
         return par[F_ALPHA] - s * y[2], -s * y[3], False
-    if k == 4 or k == 5:
-        sg = 1.0 if k == 4 else -1.0
+    if k == R_U_MAX or k == R_U_MIN:
+        sg = 1.0 if k == R_U_MAX else -1.0
         udd, _ = accelerations(t, y, s, True, par, hdr, smp)
         return sg * y[1], sg * udd, False
     _ag, _dag, av, dav = ground_rates(t, hdr, smp)
@@ -224,17 +238,17 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     rocking = disc[D_MODE] == MODE_ROCK
     s = disc[D_PIVOT]
     if not rocking:
-        if k == 0:
+        if k == C_UPLIFT:
             book_time(t, disc, met)
             y[2] = 0.0
             y[3] = 0.0
             return contact_or_uplift(t, y, par, disc, hdr, smp, met, log, cnt)
-        if k == 1 or k == 2:
+        if k == C_U_MAX or k == C_U_MIN:
             track_u(y[0], met)
             return RUNNING
-        log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], 0.0, 0)
+        log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], 0.0, 0)   # C_FLIGHT
         return FLIGHT
-    if k == 0:
+    if k == R_IMPACT:
         book_time(t, disc, met)
         pre = y[3]
         met[M_IMPACTS] += 1
@@ -265,19 +279,19 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         check_energy(t_before, kinetic(y, s, False, par), met)
         log_event(log, cnt, t, EV_IMPACT, pre, 0.0, 0.0, -s)
         return contact_or_uplift(t, y, par, disc, hdr, smp, met, log, cnt)
-    if k == 1:
+    if k == R_OVERTURN:
         book_time(t, disc, met)
         return overturned(t, y[2], y[3], s, met, log, cnt)
-    if k == 2:
+    if k == R_PEAK:
         track_rotation(y[2], met)
         return RUNNING
-    if k == 3:
+    if k == R_PASS_ALPHA:
         passed_alpha(t, y[2], y[3], s, met, log, cnt)
         return RUNNING
-    if k == 4 or k == 5:
+    if k == R_U_MAX or k == R_U_MIN:
         track_u(y[0], met)
         return RUNNING
-    log_event(log, cnt, t, EV_FLIGHT, y[3], y[3], y[2], s)
+    log_event(log, cnt, t, EV_FLIGHT, y[3], y[3], y[2], s)   # R_FLIGHT
     return FLIGHT
 
 

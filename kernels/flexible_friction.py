@@ -21,14 +21,14 @@ Wittich's full-contact rule in its general form: theta'+ = 0,
 u'+ = u'- + H theta'-, d'+ = d'- + h_b theta'- (the frictionless plastic
 projection; h_b = 0 by default, so the slip velocity is kept).
 
-Events (g > 0 admissible):
-  REST        0 uplift (either corner), 1 slip onset mu_s N - |F|,
-              2/3 extrema of u (observers), 4 flight G
-  SLIDE       0 uplift while slipping (-s theta''), 1 stick sigma d',
-              2/3 extrema of u, 4 flight G
-  ROCK        0 impact s theta, 1 overturn, 2 slip onset, 3 lift-off N,
-              4 peak s theta' (obs.), 5 pass alpha (obs.), 6/7 extrema of u
-  SLIDE_ROCK  as ROCK with 2 stick sigma d'
+Events (g > 0 admissible; ids C_* in full contact, R_* while rocking):
+  REST        C_UPLIFT (either corner), C_SLIP_STICK slip onset mu_s N - |F|,
+              C_U_MAX/C_U_MIN extrema of u (observers), C_FLIGHT G
+  SLIDE       C_UPLIFT while slipping (-s theta''), C_SLIP_STICK stick sigma d',
+              C_U_MAX/C_U_MIN, C_FLIGHT
+  ROCK        R_IMPACT s theta, R_OVERTURN, R_SLIP_STICK slip onset, R_LIFT_OFF N,
+              R_PEAK s theta' (obs.), R_PASS_ALPHA (obs.), R_U_MAX/R_U_MIN
+  SLIDE_ROCK  as ROCK with R_SLIP_STICK stick sigma d'
 """
 import math
 
@@ -61,6 +61,21 @@ N_PAR = 18
 LIFT_OFF_STOP = 0
 LIFT_OFF_HOLD = 1
 N_EVENTS = 8
+# event ids in full contact (REST, SLIDE)
+C_UPLIFT = 0        # REST: uplift test of 3.3, either corner; SLIDE: a corner lifts while slipping
+C_SLIP_STICK = 1    # REST: slip onset mu_s N - |F|; SLIDE: stick sigma d'
+C_U_MAX = 2         # extrema of u (observers)
+C_U_MIN = 3
+C_FLIGHT = 4        # G = g + a_v reaches 0
+# event ids while rocking (ROCK, SLIDE_ROCK)
+R_IMPACT = 0        # s theta reaches 0
+R_OVERTURN = 1      # s theta reaches theta_over
+R_SLIP_STICK = 2    # ROCK: slip onset; SLIDE_ROCK: stick sigma d'
+R_LIFT_OFF = 3      # N reaches 0 (or, held unloaded, N back above N_RELOAD)
+R_PEAK = 4          # s theta' reaches 0 (observer)
+R_PASS_ALPHA = 5    # s theta passes alpha (observer)
+R_U_MAX = 6         # extrema of u (observers)
+R_U_MIN = 7
 SLIP_ATOL = 1e-9     # consistent slip start: sigma d'' > -SLIP_ATOL g
 N_LIFT = 1e-6        # N below N_LIFT times the weight at slip onset: lift-off
 N_RELOAD = 2e-6      # a held lift-off ends when N exceeds N_RELOAD times it
@@ -194,24 +209,24 @@ def event(k, t, y, par, disc, hdr, smp):
     s = disc[D_PIVOT]
     sig = disc[D_SLIP_DIR]
     if mode == MODE_REST or mode == MODE_SLIDE:
-        if k == 4:
+        if k == C_FLIGHT:
             _ag, _dag, av, dav = ground_rates(t, hdr, smp)
             return par[F_G] + av, dav, True
-        if k == 2 or k == 3:
-            sg = 1.0 if k == 2 else -1.0
+        if k == C_U_MAX or k == C_U_MIN:
+            sg = 1.0 if k == C_U_MAX else -1.0
             if mode == MODE_REST:
                 udd, _F, _N = contact_stick(t, y, par, hdr, smp)
             else:
                 udd, _dd, _N = contact_slip(t, y, sig, par, hdr, smp)
             return sg * y[1], sg * udd, False
         if mode == MODE_REST:
-            if k == 0:
+            if k == C_UPLIFT:
                 gp, gdp = uplift_margin(t, y, 1, par, hdr, smp)
                 gm, gdm = uplift_margin(t, y, -1, par, hdr, smp)
                 if gp <= gm:
                     return gp, gdp, True
                 return gm, gdm, True
-            if k == 1:
+            if k == C_SLIP_STICK:
                 ag, dag, av, dav = ground_rates(t, hdr, smp)
                 mb = par[F_MB]
                 wn = par[F_WN]
@@ -223,38 +238,38 @@ def event(k, t, y, par, disc, hdr, smp):
                 gd = par[Q_MU_S] * (1.0 + mb) * dav - (dF if F >= 0.0 else -dF)
                 return g, gd, True
             return np.inf, 0.0, False
-        if k == 0:
+        if k == C_UPLIFT:
             return slide_uplift_margin(t, y, sig, par, hdr, smp), 0.0, True
-        if k == 1:
+        if k == C_SLIP_STICK:
             _udd, dd, _N = contact_slip(t, y, sig, par, hdr, smp)
             return sig * y[5], sig * dd, True
         return np.inf, 0.0, False
-    if k == 0:
+    if k == R_IMPACT:
         return s * y[2], s * y[3], True
-    if k == 1:
+    if k == R_OVERTURN:
         return par[F_THETA_OVER] - s * y[2], -s * y[3], True
-    if k == 5:
+    if k == R_PASS_ALPHA:
         return par[F_ALPHA] - s * y[2], -s * y[3], False
     if mode == MODE_ROCK:
         udd, tdd, F, N = stick_rock(t, y, s, par, hdr, smp)
-        if k == 2:
+        if k == R_SLIP_STICK:
             # no rate: F and N depend on a_g and the accelerations
             return par[Q_MU_S] * N - abs(F), 0.0, True
     else:
         udd, tdd, dd, N = slip_rock(t, y, s, sig, par, hdr, smp)
-        if k == 2:
+        if k == R_SLIP_STICK:
             if sig == 0:
                 return np.inf, 0.0, True
             return sig * y[5], sig * dd, True
-        if k == 3 and sig == 0:
+        if k == R_LIFT_OFF and sig == 0:
             # unloaded: contact returns; the band between N_LIFT and
             # N_RELOAD keeps lift-off and reload from ping-ponging
             return N_RELOAD * (1.0 + par[F_MB]) * par[F_G] - N, 0.0, True
-    if k == 3:
+    if k == R_LIFT_OFF:
         return N, 0.0, True
-    if k == 4:
+    if k == R_PEAK:
         return s * y[3], s * tdd, False
-    sg = 1.0 if k == 6 else -1.0
+    sg = 1.0 if k == R_U_MAX else -1.0
     return sg * y[1], sg * udd, False
 
 
@@ -481,16 +496,16 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     s = disc[D_PIVOT]
     rocking = mode == MODE_ROCK or mode == MODE_SLIDE_ROCK
     if not rocking:
-        if k == 2 or k == 3:
+        if k == C_U_MAX or k == C_U_MIN:
             track_u(y[0], met)
             return RUNNING
         book_time(t, disc, met)
         track_slide(y[4], met)
-        if k == 4:
+        if k == C_FLIGHT:
             log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], 0.0, 0)
             return FLIGHT
         if mode == MODE_SLIDE:
-            if k == 1:
+            if k == C_SLIP_STICK:
                 return stick(t, y, par, disc, hdr, smp, met, log, cnt)
             # the slip-rock solve lifts a corner: follow it (the event,
             # not a re-test at the root, decides)
@@ -501,37 +516,37 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             set_mode(disc, MODE_SLIDE_ROCK, sp, sig)
             lift(t, y, sp, met, log, cnt)
             return RUNNING
-        if k == 0:
+        if k == C_UPLIFT:
             gp, _ = uplift_margin(t, y, 1, par, hdr, smp)
             gm, _ = uplift_margin(t, y, -1, par, hdr, smp)
             return uplift_from_rest(t, y, 1 if gp <= gm else -1, par, disc,
                                     hdr, smp, met, log, cnt)
-        _udd, F, _N = contact_stick(t, y, par, hdr, smp)
+        _udd, F, _N = contact_stick(t, y, par, hdr, smp)      # C_SLIP_STICK in REST
         return slip_or_slide_rock(t, y, 0, -1 if F > 0.0 else 1, par, disc,
                                   hdr, smp, met, log, cnt)
-    if k == 4:
+    if k == R_PEAK:
         track_rotation(y[2], met)
         return RUNNING
-    if k == 5:
+    if k == R_PASS_ALPHA:
         passed_alpha(t, y[2], y[3], s, met, log, cnt)
         return RUNNING
-    if k == 6 or k == 7:
+    if k == R_U_MAX or k == R_U_MIN:
         track_u(y[0], met)
         return RUNNING
     book_time(t, disc, met)
     track_slide(y[4], met)
-    if k == 3:
+    if k == R_LIFT_OFF:
         if disc[D_SLIP_DIR] == 0 and mode == MODE_SLIDE_ROCK:
             return reload(t, y, par, disc, hdr, smp, met, log, cnt)
         return lift_off(t, y, s, par, disc, met, log, cnt)
-    if k == 2:
+    if k == R_SLIP_STICK:
         if mode == MODE_ROCK:
             _u, _t, F, _N = stick_rock(t, y, s, par, hdr, smp)
             met[M_N_STICK_SLIP] += 1
             return start_slip_rock(t, y, s, F, par, disc, hdr, smp, met,
                                    log, cnt)
         return stick(t, y, par, disc, hdr, smp, met, log, cnt)
-    if k == 1:
+    if k == R_OVERTURN:
         return overturned(t, y[2], y[3], s, met, log, cnt)
     return impact(t, y, par, disc, hdr, smp, met, log, cnt)
 

@@ -14,11 +14,12 @@ Stick: d'' = 0 and F unknown; slip: F = -mu_k sigma N.  Modes: REST
 (static), SLIDE (theta = 0), ROCK (stick) and SLIDE_ROCK.  No regularised
 friction law: every transition is an event.
 
-Events (g > 0 admissible):
-  ROCK        0 impact s*theta, 1 overturn, 2 slip onset mu_s N - |F|,
-              3 lift-off N, 4 peak s*theta' (observer), 5 pass alpha (obs.)
-  SLIDE_ROCK  0 impact, 1 overturn, 2 stick sigma*d', 3 lift-off N, 4, 5
-  SLIDE       2 stick sigma*d', 3 flight G
+Events (g > 0 admissible; ids E_*):
+  ROCK        E_IMPACT s*theta, E_OVERTURN, E_SLIP_STICK slip onset mu_s N - |F|,
+              E_LIFT_OFF N, E_PEAK s*theta' (observer), E_PASS_ALPHA (obs.)
+  SLIDE_ROCK  E_IMPACT, E_OVERTURN, E_SLIP_STICK stick sigma*d', E_LIFT_OFF N,
+              E_PEAK, E_PASS_ALPHA
+  SLIDE       E_SLIP_STICK stick sigma*d', E_LIFT_OFF flight G
 """
 import math
 
@@ -45,6 +46,13 @@ Q_MU_S = 13
 Q_MU_K = 14
 N_PAR = 16
 N_EVENTS = 6
+# event ids (the same number keeps one meaning in every mode that has it)
+E_IMPACT = 0        # ROCK/SLIDE_ROCK: s theta reaches 0
+E_OVERTURN = 1      # ROCK/SLIDE_ROCK: s theta reaches theta_over
+E_SLIP_STICK = 2    # ROCK: slip onset mu_s N - |F|; SLIDE/SLIDE_ROCK: stick sigma d'
+E_LIFT_OFF = 3      # ROCK/SLIDE_ROCK: N reaches 0; SLIDE: G reaches 0 (flight)
+E_PEAK = 4          # ROCK/SLIDE_ROCK: s theta' reaches 0 (observer)
+E_PASS_ALPHA = 5    # ROCK/SLIDE_ROCK: s theta passes alpha (observer)
 
 
 @jit
@@ -110,35 +118,35 @@ def event(k, t, y, par, disc, hdr, smp):
     s = disc[D_PIVOT]
     sig = disc[D_SLIP_DIR]
     if mode == MODE_SLIDE:
-        if k == 2:
+        if k == E_SLIP_STICK:
             ag, av = ground(t, hdr, smp)
             dd = -ag - par[Q_MU_K] * sig * (par[P_G] + av)
             return sig * y[3], sig * dd, True
-        if k == 3:
+        if k == E_LIFT_OFF:
             _ag, _dag, av, dav = ground_rates(t, hdr, smp)
             return par[P_G] + av, dav, True
         return np.inf, 0.0, False
-    if k == 0:
+    if k == E_IMPACT:
         return s * y[0], s * y[1], True
-    if k == 1:
+    if k == E_OVERTURN:
         return par[P_THETA_OVER] - s * y[0], -s * y[1], True
-    if k == 5:
+    if k == E_PASS_ALPHA:
         return par[P_ALPHA] - s * y[0], -s * y[1], False
     if mode == MODE_ROCK:
         tdd, F, N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
-        if k == 2:
+        if k == E_SLIP_STICK:
             # rate by a one-sided difference: F and N depend on a_g, theta''
             g = par[Q_MU_S] * N - abs(F)
             return g, 0.0, True
-        if k == 3:
+        if k == E_LIFT_OFF:
             return N, 0.0, True
-        return s * y[1], s * tdd, False
+        return s * y[1], s * tdd, False      # E_PEAK
     tdd, dd, N = slip_rock(t, y[0], y[1], s, sig, par, hdr, smp)
-    if k == 2:
+    if k == E_SLIP_STICK:
         return sig * y[3], sig * dd, True
-    if k == 3:
+    if k == E_LIFT_OFF:
         return N, 0.0, True
-    return s * y[1], s * tdd, False
+    return s * y[1], s * tdd, False          # E_PEAK
 
 
 @jit
@@ -382,18 +390,18 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
     mode = disc[D_MODE]
     s = disc[D_PIVOT]
-    if k == 4:
+    if k == E_PEAK:
         track_rotation(y[0], met)
         return RUNNING
-    if k == 5:
+    if k == E_PASS_ALPHA:
         passed_alpha(t, y[0], y[1], s, met, log, cnt)
         return RUNNING
     book_time(t, disc, met)
     track_slide(y[2], met)
-    if k == 3:
+    if k == E_LIFT_OFF:
         log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], y[0], s)
         return FLIGHT
-    if k == 2:
+    if k == E_SLIP_STICK:
         if mode == MODE_ROCK:
             _tdd, F, _N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
             sig = -1 if F > 0.0 else 1
@@ -402,7 +410,7 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             log_event(log, cnt, t, EV_SLIP, y[1], y[1], y[0], sig)
             return RUNNING
         return stick(t, y, par, disc, hdr, smp, met, log, cnt)
-    if k == 1:
+    if k == E_OVERTURN:
         return overturned(t, y[0], y[1], s, met, log, cnt)
     return impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
 
