@@ -1,0 +1,879 @@
+"""Fuzz suite of issue #14 (item 2): random scenes for every model family.
+
+Draws random scenes the way a user sweeping parameters would, runs them in batches through
+``overturning_spectrum`` (one body per batch, a grid of pulses, both signs) and a sample of
+them through ``simulate``, and classifies every run (a *case* is one cell of a batch's main
+spectrum grid):
+
+``ok``                    definite status, finite results, every invariant checked on it held
+``failed:<reason>``       the run's status is ``failed:*`` (step budget, event location ...)
+``nan``                   a definite run with NaN/inf in max_rotation, time_end or the final state
+``hang``                  the batch (or a check run on it) took longer than ``--time-limit``
+``error:<Exception>``     the front end raised on a scene the draw considers valid
+``violated:<invariant>``  an invariant failed on this cell (list below)
+
+Invariants and their tolerance rules
+------------------------------------
+"Same result" of two runs means: same ``outcome``, and ``max_rotation_ratio`` (max|theta|/alpha)
+within ``REL_EXACT`` = 1e-6 relative.  A pair that differs is re-run once with the tight
+adaptive solver (rtol = ``TIGHT_RTOL``, ``early_exit=False``); if the tight pair is the same,
+the original difference is an integration-error effect at an outcome boundary and is counted
+under ``boundary:<invariant>`` (reported, not a failure); if it still differs, or a run of the
+pair failed, the cell gets ``violated:<invariant>``.
+
+* ``mirror``: a two-sided body (every family but the wall) under sign -1 gives the same result
+  as under sign +1 (the one-sine, half-sine and one-cosine pulses of sign -1 are exact mirror
+  images), run with ``early_exit=False``.  Wall family: (wall side s, sign +1) against (side
+  -s, sign -1).
+* ``scale``: the same scene with every length scaled by k (p by 1/sqrt(k); wall gap, height and
+  slide tolerance scaled; t_after, fixed dt and the chatter thresholds scaled in time), the same
+  a_p/(g tan alpha) and omega_p/p.  Not exact in floating point (atol is absolute in rad/s):
+  boundary rule.
+* ``mu_inf``: ``Friction(1e6)`` against no friction (friction families; the flexible one with
+  ``lift_off="hold"`` and the same base mass; cells where the friction run held a lift-off are
+  not comparable and skipped).  Outcome only ("slide" counts as "safe" for mu = 1e6 with a
+  residual slip below 1 um).
+* ``tall_wall``: a wall at gap >= 2h (either side, any height) against no wall (wall family;
+  README: "bit for bit").
+* ``early_exit``: the spectrum run (``early_exit=True``) against ``simulate`` of the same cell
+  (``early_exit=False``): same outcome (README: the early decisions are exact).
+* ``energy``: in ``simulate`` runs, after the pulse has ended, the mechanical energy computed
+  from the history never rises by more than ``ENERGY_TOL`` (relative to the energy scale) above
+  its running minimum.  Rigid, wall: E = theta'^2/(2p^2) + cos(alpha - |theta|) - cos(alpha)
+  [M g R].  Friction: (d' + Y_G theta')^2/2 + (X_G theta')^2/2 + I_G theta'^2/(2M) + g Y_G.
+  Flexible (both): kinetic energy of the mass, base and rotary inertias with the base slip,
+  + K u^2/2 + gravity (physics.md 3.4, 4.4).  Not checked: the pivot-switch (I1) impact map
+  (it creates energy by design, README) and the foundation family (spring energy of the
+  two-spring model not in the history; the switching model gains energy at uplift by design).
+* ``stiff``: (flexible family, reported only) omega_n/p = 1000 against ``rigid_equivalent()``:
+  outcome mismatches are counted under ``stiff_mismatch``, never a failure.
+
+Usage::
+
+    python bench/fuzz.py --cases 2000 --seed 1               # every family
+    python bench/fuzz.py --family wall --cases 500 --out wall.csv
+    python bench/fuzz.py --replay 'wall:1:17'                  # one batch, verbose
+
+Every batch has its own seed (``family:seed:batch``); ``--replay`` re-runs it and prints its
+parameters and the failing cells.  Run with ``NUMBA_NUM_THREADS=1`` on a shared machine.
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import hashlib
+import json
+import math
+import signal
+import sys
+import time
+import warnings
+from collections import Counter, defaultdict
+
+import numpy as np
+import pandas as pd
+
+FAMILIES = ("rigid", "wall", "friction", "flexible", "flexible_friction", "foundation")
+PULSES = ("one-sine", "half-sine", "one-cosine")
+REL_EXACT = 1e-6
+TIGHT_RTOL = 1e-11
+ENERGY_TOL = 1e-6          # relative to the energy scale, plus ENERGY_TOL_RTOL * rtol
+ENERGY_TOL_RTOL = 100.0
+T_AFTER = 10.0
+FAILURE_PREFIXES = ("failed", "nan", "hang", "error", "violated")
+
+
+# --------------------------------------------------------------------------- draws
+def _logu(rng, lo, hi):
+    return float(10 ** rng.uniform(math.log10(lo), math.log10(hi)))
+
+
+def batch_seed(family, seed, batch):
+    """The integer seed of one batch, from its name ``family:seed:batch``."""
+    h = hashlib.sha256(f"{family}:{seed}:{batch}".encode()).digest()
+    return int.from_bytes(h[:8], "little")
+
+
+def _alpha(rng, hi=0.9):
+    u = rng.uniform()
+    if u < 0.3:
+        return _logu(rng, 0.01, 0.1)          # slender
+    if u < 0.8:
+        return float(rng.uniform(0.1, 0.45))
+    return float(rng.uniform(0.45, hi))       # stout
+
+
+def _rect(rng, alpha):
+    R = _logu(rng, 0.05, 20.0)
+    return {"kind": "rectangle", "b": R * math.sin(alpha), "h": R * math.cos(alpha)}
+
+
+def _rigid_body(rng, rect_only=False):
+    alpha = _alpha(rng)
+    d = _rect(rng, alpha) if (rect_only or rng.uniform() < 0.75) else \
+        {"kind": "alpha_p", "alpha": alpha, "p": _logu(rng, 0.5, 20.0)}
+    d["e"] = None if rng.uniform() < 0.7 else float(rng.uniform(0.0, 1.0))
+    return d
+
+
+def _flex_body(rng, friction=False):
+    d = {"kind": "flexible", "alpha": float(rng.uniform(0.05, 0.6)), "p": _logu(rng, 0.5, 10.0),
+         "omega_n_over_p": _logu(rng, 2.0, 300.0),
+         "zeta": 0.0 if rng.uniform() < 0.3 else float(rng.uniform(0.0, 0.1)),
+         "impact": "full-contact", "e": None, "rotary_inertia_ratio": 0.0,
+         "base_mass_ratio": None, "base_cm_height": 0.0}
+    if not friction and rng.uniform() < 0.15:
+        d["impact"] = "pivot-switch"
+        d["e"] = float(rng.uniform(0.8, 1.0))
+    elif rng.uniform() < 0.4:
+        d["base_mass_ratio"] = float(rng.uniform(0.02, 0.5))
+    if rng.uniform() < 0.3:
+        d["rotary_inertia_ratio"] = float(rng.uniform(0.0, 0.5))
+    if friction and rng.uniform() < 0.3:
+        R0 = 9.80665 / (d["p"] ** 2 * (1 + d["rotary_inertia_ratio"]))
+        d["base_cm_height"] = float(rng.uniform(0.0, 0.3)) * R0 * math.cos(d["alpha"])
+    return d
+
+
+def _friction(rng):
+    mu_s = _logu(rng, 0.05, 2.0)
+    return {"mu_s": mu_s, "mu_k": mu_s if rng.uniform() < 0.5 else mu_s * float(rng.uniform(0.5, 1.0))}
+
+
+def draw_batch(family, seed, batch, chunk=32):
+    """Parameters of one batch (JSON-serialisable): body, effects, solver, pulse kind and grid."""
+    s = batch_seed(family, seed, batch)
+    rng = np.random.default_rng(s)
+    P = {"family": family, "id": f"{family}:{seed}:{batch}", "wall": None, "friction": None,
+         "foundation": None, "mass": 1.0}
+    if family == "rigid":
+        P["body"] = _rigid_body(rng)
+    elif family == "wall":
+        P["body"] = _rigid_body(rng, rect_only=True)
+        h = P["body"]["h"]
+        u = rng.uniform()
+        gap = 0.0 if u < 0.05 else (2 * h * _logu(rng, 1.0, 3.0) if u < 0.15 else _logu(rng, 1e-9, 2 * h))
+        P["wall"] = {"gap": gap, "side": int(rng.choice([-1, 1])),
+                     "height": None if rng.uniform() < 0.7 else 2 * h * _logu(rng, 0.1, 2.0),
+                     "restitution": 1.0 if rng.uniform() < 0.5 else float(rng.uniform(0.0, 1.0))}
+    elif family == "friction":
+        P["body"] = _rigid_body(rng)
+        P["friction"] = _friction(rng)
+    elif family == "flexible":
+        P["body"] = _flex_body(rng)
+    elif family == "flexible_friction":
+        P["body"] = _flex_body(rng, friction=True)
+        P["friction"] = _friction(rng)
+        P["friction"]["lift_off"] = "stop" if rng.uniform() < 0.5 else "hold"
+    elif family == "foundation":
+        P["body"] = _rigid_body(rng, rect_only=True)
+        P["body"]["e"] = None
+        kind = rng.choice(["two-spring", "switching", "linear"], p=[0.4, 0.3, 0.3])
+        P["mass"] = _logu(rng, 1.0, 1e4)
+        P["foundation"] = {"type": str(kind), "omega_over_p": _logu(rng, 3.0, 300.0),
+                           "zeta": float(rng.uniform(0.0, 0.2)),
+                           "e_f": 1.0 if rng.uniform() < 0.5 else float(rng.uniform(0.5, 1.0))}
+    else:
+        raise ValueError(f"unknown family {family!r}")
+    P["pulse"] = str(rng.choice(PULSES))
+    n = max(1, int(round(math.sqrt(chunk / 2))))
+    amps = []
+    for _ in range(n):
+        u = rng.uniform()
+        amps.append(float(rng.uniform(0.995, 1.005)) if u < 0.1 else
+                    (float(rng.uniform(0.3, 1.0)) if u < 0.25 else _logu(rng, 1.0, 40.0)))
+    P["amps"] = amps
+    P["freqs"] = [_logu(rng, 0.1, 60.0) for _ in range(n)]
+    P["rtol"] = _logu(rng, 1e-10, 1e-4)
+    P["dt_per"] = float(rng.uniform(30, 300)) if rng.uniform() < 0.1 else None
+    P["sim_cells"] = [int(i) for i in rng.choice(2 * n * n, size=min(2, 2 * n * n), replace=False)]
+    P["stiff"] = family == "flexible" and rng.uniform() < 0.25
+    P["scale_k"] = _logu(rng, 0.03, 30.0)
+    P["tall_side"] = int(rng.choice([-1, 1]))
+    P["tall_gap"] = float(rng.uniform(1.0, 3.0))
+    return P
+
+
+# ----------------------------------------------------------------------- building
+def _fr():
+    import fastrock
+    return fastrock
+
+
+def build_body(B, scale=1.0, stiff=False):
+    fr = _fr()
+    if B["kind"] == "rectangle":
+        return fr.RigidBlock.rectangle(B["b"] * scale, B["h"] * scale, e=B["e"])
+    if B["kind"] == "alpha_p":
+        return fr.RigidBlock(B["alpha"], B["p"] / math.sqrt(scale), e=B["e"])
+    kw = {k: B[k] for k in ("alpha", "zeta", "impact", "e", "rotary_inertia_ratio", "base_mass_ratio")}
+    kw["base_cm_height"] = B["base_cm_height"] * scale
+    return fr.FlexibleBody(p=B["p"] / math.sqrt(scale), omega_n_over_p=1000.0 if stiff else B["omega_n_over_p"],
+                           **kw)
+
+
+def body_frequency(body):
+    """Largest natural frequency of the body alone [rad/s] (for the fixed step)."""
+    w = body.p
+    if getattr(body, "kind", "") == "flexible":
+        w = max(w, body.omega_n)
+    return w
+
+
+def build_scene(P, scale=1.0, variant=None):
+    """Keyword arguments of overturning_spectrum / simulate for batch ``P``.
+
+    ``variant``: None, "stiff", "rigid_equiv", "mu_inf", "no_friction", "tall_wall", "no_wall",
+    "mirror_wall" (wall on the other side), "tight" (adaptive rtol TIGHT_RTOL)."""
+    fr = _fr()
+    body = build_body(P["body"], scale, stiff=variant in ("stiff", "rigid_equiv"))
+    if variant == "rigid_equiv":
+        body = body.rigid_equivalent()
+    if variant == "no_friction" and P["family"] == "flexible_friction":
+        body = dataclasses.replace(body, base_mass_ratio=body.base_mass(sliding=True))
+    kw = {"body": body, "pulse": P["pulse"], "mass": P["mass"]}
+    if P["wall"] is not None and variant != "no_wall":
+        W = P["wall"]
+        kw["wall"] = fr.Wall(W["gap"] * scale, -W["side"] if variant == "mirror_wall" else W["side"],
+                             None if W["height"] is None else W["height"] * scale, W["restitution"])
+    if variant == "tall_wall":
+        kw["wall"] = fr.Wall(2 * body.h * P["tall_gap"], P["tall_side"], None, 1.0)
+    if P["friction"] is not None and variant != "no_friction":
+        F = P["friction"]
+        lift = F.get("lift_off", "stop")
+        if variant == "mu_inf":
+            kw["friction"] = fr.Friction(1e6, slide_tolerance=1e-6,
+                                         lift_off="hold" if P["family"] == "flexible_friction" else lift)
+        else:
+            kw["friction"] = fr.Friction(F["mu_s"], F["mu_k"], slide_tolerance=1e-3 * scale, lift_off=lift)
+    if P["foundation"] is not None:
+        from fastrock import foundation as FD
+        D = P["foundation"]
+        om = D["omega_over_p"] * body.p
+        if D["type"] == "two-spring":
+            kw["foundation"] = FD.TwoSpringFoundation.from_vibration(body, om, D["zeta"], P["mass"])
+        elif D["type"] == "switching":
+            kw["foundation"] = FD.SwitchingFoundation.from_vibration(body, om, D["zeta"], D["e_f"], P["mass"])
+        else:
+            kw["foundation"] = FD.LinearVibration.from_vibration(body, om, D["zeta"], P["mass"])
+    tscale = math.sqrt(scale)       # time scales as 1/p = sqrt(length)
+    if variant == "tight":
+        kw["solver"] = fr.Solver(rtol=TIGHT_RTOL)
+    elif P["dt_per"]:
+        w = max(body_frequency(body), max(P["freqs"]) * body.p)
+        fd = kw.get("foundation")
+        if fd is not None:      # contact vibration, and the vertical mode of the corner springs
+            w = max(w, P["foundation"]["omega_over_p"] * body.p)
+            if hasattr(fd, "k_v"):
+                I0 = P["mass"] * body.g * math.hypot(body.b, body.h) / body.p ** 2
+                w = max(w, math.sqrt(2 * fd.k_v / P["mass"]), math.sqrt(4 * fd.k_v * body.b ** 2 / I0))
+        kw["solver"] = fr.Solver(dt=2 * math.pi / w / P["dt_per"])
+    else:
+        kw["solver"] = fr.Solver(rtol=P["rtol"], eps_t=1e-9 * tscale, eps_omega=1e-9 / tscale)
+    kw["t_after"] = T_AFTER * tscale
+    return kw
+
+
+# ------------------------------------------------------------------------ running
+class _Hang(Exception):
+    pass
+
+
+class _Alarm:
+    """Interrupt the running kernel after ``limit`` s (the kernels stop within one step on
+    Ctrl-C; ``run_sweep`` then returns the finished rows)."""
+
+    def __init__(self, limit):
+        self.limit = limit
+
+    def __enter__(self):
+        self.t0 = time.perf_counter()
+        if self.limit and hasattr(signal, "setitimer"):
+            def handler(signum, frame):
+                raise KeyboardInterrupt
+            self.old = signal.signal(signal.SIGALRM, handler)
+            signal.setitimer(signal.ITIMER_REAL, self.limit)
+        return self
+
+    def __exit__(self, *exc):
+        if self.limit and hasattr(signal, "setitimer"):
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, self.old)
+        self.elapsed = time.perf_counter() - self.t0
+        if exc[0] is KeyboardInterrupt:
+            raise _Hang(f"interrupted after {self.elapsed:.1f} s")
+        return False
+
+
+def spectrum(P, amps, freqs, signs="both", early_exit=True, scale=1.0, variant=None, limit=None):
+    """overturning_spectrum of batch P (or a variant); returns (df, seconds, hang)."""
+    from fastrock.spectrum import overturning_spectrum
+    kw = build_scene(P, scale, variant)
+    body = kw.pop("body")
+    kind = kw.pop("pulse")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with _Alarm(limit) as al:
+            df = overturning_spectrum(body, amps, freqs, signs, pulse=kind, early_exit=early_exit,
+                                      progress=False, **kw)
+    n = len(amps) * len(freqs) * (2 if signs == "both" else 1)
+    hang = len(df) < n or (limit is not None and al.elapsed > limit)
+    return df, al.elapsed, hang
+
+
+def _key(r):
+    return (float(r["amplitude_ratio"]), float(r["frequency_ratio"]), int(r["sign"]))
+
+
+def _bad_numbers(r):
+    vals = [r["max_rotation"], r["time_end"], r["theta_end"], r["theta_dot_end"]]
+    return not all(np.isfinite(float(v)) for v in vals)
+
+
+def _same(a, b, outcome_only=False):
+    """The tolerance rule: same outcome and max|theta|/alpha within REL_EXACT."""
+    oa, ob = a["outcome"], b["outcome"]
+    if oa != ob:
+        return False
+    if outcome_only:
+        return True
+    ra, rb = float(a["max_rotation_ratio"]), float(b["max_rotation_ratio"])
+    return abs(ra - rb) <= REL_EXACT * max(1.0, abs(ra), abs(rb))
+
+
+def _mirror_pair_rows(df_a, df_b, flip=True):
+    """Pairs (row_a, row_b) of cells with the same amplitude/frequency and opposite sign."""
+    ib = {_key(r): r for _, r in df_b.iterrows()}
+    out = []
+    for _, r in df_a.iterrows():
+        a, f, s = _key(r)
+        other = ib.get((a, f, -s if flip else s))
+        if other is not None:
+            out.append((r, other))
+    return out
+
+
+class BatchResult:
+    def __init__(self, P):
+        self.P = P
+        self.cases = {}            # key -> dict (row summary + tags)
+        self.tags = defaultdict(set)
+        self.details = defaultdict(list)
+        self.times = {}
+        self.boundary = Counter()
+        self.reported = Counter()
+        self.skipped = Counter()
+        self.checked = Counter()
+
+    def tag(self, key, kind, detail=""):
+        self.tags[key].add(kind)
+        if detail:
+            self.details[key].append(f"{kind}: {detail}")
+
+
+def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None, limit=None):
+    """Run two variants on ``cells`` and compare them row by row (with the tight re-run rule).
+
+    run_a / run_b: functions (tight: bool) -> dict key -> row (key of the main grid cell)."""
+    try:
+        A, ta, ha = run_a(False)
+        B, tb, hb = run_b(False)
+    except _Hang as e:
+        for k in cells:
+            res.tag(k, "hang", f"{name} check: {e}")
+        return
+    except Exception as e:  # noqa: BLE001
+        for k in cells:
+            res.tag(k, f"error:{type(e).__name__}", f"{name} check: {e}")
+        return
+    res.times[name] = ta + tb
+    if ha or hb:
+        for k in cells:
+            res.tag(k, "hang", f"{name} check took {ta + tb:.1f} s")
+    diff = []
+    for k in cells:
+        if k not in A or k not in B:
+            continue
+        if any(t.startswith(("failed", "hang", "error")) for t in res.tags.get(k, ())):
+            res.skipped[name] += 1          # the main run failed already: counted there
+            continue
+        a, b = A[k], B[k]
+        if skip is not None and skip(a, b):
+            res.skipped[name] += 1
+            continue
+        res.checked[name] += 1
+        if a["status"].startswith("failed") or b["status"].startswith("failed"):
+            res.tag(k, f"violated:{name}", f"check run status {a['status']} / {b['status']}")
+            continue
+        if not _same(a, b, outcome_only):
+            diff.append(k)
+    if not diff:
+        return
+    try:
+        At, _, _ = run_a(True)
+        Bt, _, _ = run_b(True)
+    except Exception as e:  # noqa: BLE001
+        At, Bt = {}, {}
+        for k in diff:
+            res.tag(k, f"violated:{name}", f"tight re-run raised {e!r}")
+        return
+    for k in diff:
+        a, b = A[k], B[k]
+        what = (f"{a['outcome']} {float(a['max_rotation_ratio']):.9g} vs {b['outcome']} "
+                f"{float(b['max_rotation_ratio']):.9g}")
+        if k in At and k in Bt and _same(At[k], Bt[k], outcome_only) \
+                and not At[k]["status"].startswith("failed"):
+            res.boundary[name] += 1
+        elif name == "mu_inf" and P["body"].get("e") is not None:
+            # README (friction): a given e that friction cannot hold is not applied, so mu -> inf
+            # tends to the frictionless block only with Housner's e; kept apart
+            res.tag(k, "violated:mu_inf:given-e", what)
+        else:
+            tw = (f"; tight: {At[k]['outcome']} {float(At[k]['max_rotation_ratio']):.9g} vs {Bt[k]['outcome']} "
+                  f"{float(Bt[k]['max_rotation_ratio']):.9g}" if k in At and k in Bt else "")
+            res.tag(k, f"violated:{name}", what + tw)
+
+
+def _rows(df, flip_sign=False):
+    out = {}
+    for _, r in df.iterrows():
+        a, f, s = _key(r)
+        out[(a, f, -s if flip_sign else s)] = r
+    return out
+
+
+# ------------------------------------------------------------------------- energy
+def energy(history, body, scene, family):
+    """Mechanical energy per unit mass [J/kg] along a simulate() history (see module docstring);
+    None when not checked for this scene."""
+    g = body.g
+    th = history["theta"].to_numpy()
+    w = history["theta_dot"].to_numpy()
+    if family in ("rigid", "wall"):
+        R = g / body.p ** 2            # any body: E in units of M g R, scaled back by g R
+        return g * R * (w * w / (2 * body.p ** 2) + np.cos(body.alpha - np.abs(th)) - np.cos(body.alpha))
+    s = history["pivot"].to_numpy().astype(float)
+    s = np.where(s == 0, 1.0, s)
+    dd = history["d_dot"].to_numpy() if "d_dot" in history else np.zeros_like(th)
+    if family == "friction":
+        from fastrock.models import rigid_friction_par
+        from fastrock.kernels import friction as K
+        par = rigid_friction_par(body, scene["friction"])
+        b, h, IG = par[K.Q_B], par[K.Q_H], par[K.Q_IG]
+        XG = -s * b * np.cos(th) + h * np.sin(th)
+        YG = s * b * np.sin(th) + h * np.cos(th)
+        return 0.5 * (dd + YG * w) ** 2 + 0.5 * (XG * w) ** 2 + 0.5 * IG * w * w + g * (YG - h)
+    if family in ("flexible", "flexible_friction"):
+        if body.impact != "full-contact":
+            return None
+        u = history["u"].to_numpy()
+        du = history["u_dot"].to_numpy()
+        Bw, H = body.B, body.H
+        mb = body.base_mass(sliding=family == "flexible_friction")
+        Ib = mb * Bw * Bw / 3.0
+        Im = body.rotary_inertia_ratio * body.R0 ** 2
+        hb = body.base_cm_height
+        X = (u - s * Bw) * np.cos(th) + H * np.sin(th)
+        Y = -(u - s * Bw) * np.sin(th) + H * np.cos(th)
+        Xd = du * np.cos(th) + Y * w
+        Yd = -du * np.sin(th) - X * w
+        Xb = -s * Bw * np.cos(th) + hb * np.sin(th)
+        Yb = s * Bw * np.sin(th) + hb * np.cos(th)
+        kin = 0.5 * ((dd + Xd) ** 2 + Yd ** 2) + 0.5 * mb * ((dd + Yb * w) ** 2 + (Xb * w) ** 2) \
+            + 0.5 * (Im + Ib) * w * w
+        pot = 0.5 * body.omega_n ** 2 * u * u + g * (Y - H) + mb * g * (Yb - hb)
+        return kin + pot
+    return None
+
+
+def energy_growth(t, E, t_free, scale):
+    """Largest rise of E above its running minimum after t_free, relative to ``scale``."""
+    m = t > t_free
+    if m.sum() < 2:
+        return 0.0
+    e = E[m]
+    run_min = np.minimum.accumulate(e)
+    return float(np.max(e - run_min) / scale)
+
+
+def _simulate_cell(P, key, variant=None, early_exit=False, limit=None):
+    from fastrock import Pulse, simulate
+    kw = build_scene(P, 1.0, variant)
+    body = kw.pop("body")
+    a, f, s = key
+    pulse = Pulse(a, f, s, kw.pop("pulse"), amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with _Alarm(limit) as al:
+            run = simulate(body, pulse, early_exit=early_exit, **kw)
+    return run, al.elapsed, pulse.end_time(body), body, kw
+
+
+# ---------------------------------------------------------------------------- batch
+def run_batch(P, time_limit=120.0, checks=True, sims=True):
+    """Run one batch and its checks; returns a BatchResult."""
+    res = BatchResult(P)
+    fam = P["family"]
+    amps, freqs = P["amps"], P["freqs"]
+    try:
+        df, el, hang = spectrum(P, amps, freqs, "both", limit=time_limit)
+    except _Hang as e:
+        for a in amps:
+            for f in freqs:
+                for s in (1, -1):
+                    k = (a, f, s)
+                    res.cases[k] = {"status": "hang", "outcome": "", "max_rotation_ratio": np.nan}
+                    res.tag(k, "hang", str(e))
+        res.times["spectrum"] = time_limit
+        return res
+    except Exception as e:  # noqa: BLE001
+        for a in amps:
+            for f in freqs:
+                for s in (1, -1):
+                    k = (a, f, s)
+                    res.cases[k] = {"status": "error", "outcome": "", "max_rotation_ratio": np.nan}
+                    res.tag(k, f"error:{type(e).__name__}", str(e)[:200])
+        return res
+    res.times["spectrum"] = el
+    main = _rows(df)
+    for a in amps:
+        for f in freqs:
+            for s in (1, -1):
+                k = (float(a), float(f), s)
+                r = main.get(k)
+                if r is None:
+                    res.cases[k] = {"status": "hang", "outcome": "", "max_rotation_ratio": np.nan}
+                    res.tag(k, "hang", f"unfinished when the batch was stopped at {el:.1f} s")
+                    continue
+                res.cases[k] = {"status": r["status"], "outcome": r["outcome"],
+                                "max_rotation_ratio": float(r["max_rotation_ratio"]),
+                                "time_end": float(r["time_end"])}
+                if r["status"].startswith("failed"):
+                    res.tag(k, r["status"])
+                elif _bad_numbers(r):
+                    res.tag(k, "nan", f"max_rotation={r['max_rotation']} time_end={r['time_end']} "
+                                      f"theta_end={r['theta_end']} theta_dot_end={r['theta_dot_end']}")
+    if hang:
+        for k in main:
+            res.tag(k, "hang", f"batch took {el:.1f} s > {time_limit} s")
+    if checks:
+        _checks(res, P, main, time_limit)
+    if sims:
+        _sim_checks(res, P, main, time_limit)
+    return res
+
+
+def _checks(res, P, main, limit):
+    fam = P["family"]
+    sa, sf = P["amps"][:2], P["freqs"][:2]
+    cells = [(float(a), float(f), s) for a in sa for f in sf for s in (1, -1)]
+
+    def spec_rows(variant=None, scale=1.0, early_exit=True, flip=False):
+        def run(tight):
+            if tight:
+                df, el, hang = _spectrum_variant_tight(P, sa, sf, variant, scale, limit)
+            else:
+                df, el, hang = spectrum(P, sa, sf, "both", early_exit=early_exit, scale=scale, variant=variant,
+                                        limit=limit)
+            return _rows(df, flip), el, hang
+        return run
+
+    # mirror symmetry (early_exit=False)
+    if fam == "wall":
+        _pair_check(res, "mirror", P, cells, spec_rows(early_exit=False),
+                    spec_rows("mirror_wall", early_exit=False, flip=True), limit=limit)
+    else:
+        _pair_check(res, "mirror", P, cells, spec_rows(early_exit=False),
+                    spec_rows(early_exit=False, flip=True), limit=limit)
+    # scale invariance
+    _pair_check(res, "scale", P, cells, spec_rows(), spec_rows(scale=P["scale_k"]), limit=limit)
+    if fam in ("friction", "flexible_friction"):
+        def not_comparable(a, b):
+            return int(a.get("lift_offs", 0) or 0) > 0
+        _pair_check(res, "mu_inf", P, cells, spec_rows("mu_inf"), spec_rows("no_friction"),
+                    outcome_only=True, skip=not_comparable if fam == "flexible_friction" else None,
+                    limit=limit)
+    if fam == "wall":
+        _pair_check(res, "tall_wall", P, cells, spec_rows("tall_wall"), spec_rows("no_wall"), limit=limit)
+    if fam == "flexible" and P["stiff"]:
+        try:
+            A, ta, _ = spec_rows("stiff")(False)
+            B, tb, _ = spec_rows("rigid_equiv")(False)
+            res.times["stiff"] = ta + tb
+            for k in cells:
+                if k in A and k in B:
+                    res.checked["stiff"] += 1
+                    if A[k]["outcome"] != B[k]["outcome"]:
+                        res.reported["stiff_mismatch"] += 1
+                        res.details[k].append(f"stiff_mismatch: {A[k]['status']} vs rigid {B[k]['status']}")
+        except _Hang as e:
+            res.reported["stiff_hang"] += 1
+            res.details[cells[0]].append(f"stiff check hang: {e}")
+
+
+def _spectrum_variant_tight(P, amps, freqs, variant, scale, limit):
+    """A variant with the tight adaptive solver (and early_exit=False)."""
+    from fastrock.spectrum import overturning_spectrum
+    fr = _fr()
+    kw = build_scene(P, scale, variant)
+    body = kw.pop("body")
+    kind = kw.pop("pulse")
+    tscale = math.sqrt(scale)
+    kw["solver"] = fr.Solver(rtol=TIGHT_RTOL, eps_t=1e-9 * tscale, eps_omega=1e-9 / tscale)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with _Alarm(limit) as al:
+            df = overturning_spectrum(body, amps, freqs, "both", pulse=kind, early_exit=False,
+                                      progress=False, **kw)
+    return df, al.elapsed, False
+
+
+def _sim_checks(res, P, main, limit):
+    """simulate() of a sample of cells: status, NaN, energy in the free phase, early exit."""
+    fam = P["family"]
+    keys = list(res.cases)
+    for i in P["sim_cells"]:
+        if i >= len(keys):
+            continue
+        k = keys[i]
+        try:
+            run, el, t_free, body, scene = _simulate_cell(P, k, limit=limit)
+        except _Hang as e:
+            res.tag(k, "hang", f"simulate: {e}")
+            continue
+        except Exception as e:  # noqa: BLE001
+            res.tag(k, f"error:{type(e).__name__}", f"simulate: {str(e)[:200]}")
+            continue
+        res.times["simulate"] = res.times.get("simulate", 0.0) + el
+        if limit is not None and el > limit:
+            res.tag(k, "hang", f"simulate took {el:.1f} s")
+        res.checked["simulate"] += 1
+        if run.status.startswith("failed"):
+            res.tag(k, run.status, "simulate (early_exit=False)")
+            continue
+        h = run.history
+        if not (np.isfinite(run.metrics["max_rotation"]) and np.isfinite(run.metrics["time_end"])
+                and np.isfinite(h["theta"].to_numpy()).all()):
+            res.tag(k, "nan", "simulate history/metrics")
+            continue
+        # early exit against the full run
+        r = main.get(k)
+        if r is not None and not r["status"].startswith("failed"):
+            res.checked["early_exit"] += 1
+            if r["outcome"] != run.outcome:
+                try:
+                    tight, _, _, _, _ = _simulate_cell(P, k, variant="tight", limit=limit)
+                    tight_e, _, _, _, _ = _simulate_cell(P, k, variant="tight", early_exit=True, limit=limit)
+                    if tight.outcome == tight_e.outcome:
+                        res.boundary["early_exit"] += 1
+                    else:
+                        res.tag(k, "violated:early_exit", f"spectrum {r['status']} vs simulate {run.status}; "
+                                                          f"tight {tight_e.status} vs {tight.status}")
+                except Exception as e:  # noqa: BLE001
+                    res.tag(k, "violated:early_exit", f"spectrum {r['status']} vs simulate {run.status} "
+                                                      f"(tight re-run: {e!r})")
+        # energy in the free phase
+        E = energy(h, body, scene, fam)
+        if E is None:
+            res.skipped["energy"] += 1
+            continue
+        res.checked["energy"] += 1
+        g = body.g
+        R = g / body.p ** 2
+        escale = max(float(np.nanmax(np.abs(E))), g * R * (1 - math.cos(body.alpha)))
+        rtol = TIGHT_RTOL if scene["solver"].dt else scene["solver"].rtol
+        tol = ENERGY_TOL + ENERGY_TOL_RTOL * rtol
+        grow = energy_growth(h["t"].to_numpy(), E, t_free, escale)
+        res.details.setdefault("_energy", []).append(grow)
+        if grow > tol and not scene["solver"].dt:
+            res.tag(k, "violated:energy", f"rise {grow:.3g} x energy scale after the pulse (tol {tol:.3g})")
+        elif grow > tol:
+            res.reported["energy_rise_fixed_dt"] += 1
+
+
+# ------------------------------------------------------------------------- driver
+def case_kinds(res):
+    """Per case: the list of failure kinds (empty: ok)."""
+    return {k: sorted(res.tags.get(k, ())) for k in res.cases}
+
+
+def run_family(family, cases, seed, chunk=32, time_limit=120.0, checks=True, sims=True, start=0,
+               on_batch=None):
+    """Run batches of ``family`` until ``cases`` main-grid cases are done.
+
+    Returns (rows, summary): rows = one dict per case; summary = dict of counters."""
+    rows = []
+    summ = {"family": family, "cases": 0, "kinds": Counter(), "boundary": Counter(),
+            "reported": Counter(), "checked": Counter(), "skipped": Counter(), "first": {},
+            "batch_times": [], "energy_growth": []}
+    b = start
+    while summ["cases"] < cases:
+        P = draw_batch(family, seed, b, chunk)
+        t0 = time.perf_counter()
+        res = run_batch(P, time_limit, checks, sims)
+        wall = time.perf_counter() - t0
+        summ["batch_times"].append(wall)
+        summ["energy_growth"].extend(res.details.pop("_energy", []))
+        for k, kinds in case_kinds(res).items():
+            c = res.cases[k]
+            rows.append({"family": family, "batch": P["id"], "amplitude_ratio": k[0], "frequency_ratio": k[1],
+                         "sign": k[2], "status": c["status"], "outcome": c["outcome"],
+                         "max_rotation_ratio": c["max_rotation_ratio"],
+                         "result": ";".join(kinds) if kinds else "ok",
+                         "detail": " | ".join(res.details.get(k, []))})
+            summ["cases"] += 1
+            for kd in kinds:
+                summ["kinds"][kd] += 1
+                if kd not in summ["first"]:
+                    summ["first"][kd] = {"batch": P["id"], "cell": k, "detail": res.details.get(k, []),
+                                         "params": P}
+        for name, C in (("boundary", res.boundary), ("reported", res.reported), ("checked", res.checked),
+                        ("skipped", res.skipped)):
+            summ[name].update(C)
+        summ["batch_times_max"] = max(summ["batch_times"])
+        if on_batch:
+            on_batch(P, res, wall)
+        b += 1
+    summ["batches"] = b - start
+    summ["failing_cases"] = sum(1 for r in rows if r["result"] != "ok")
+    return rows, summ
+
+
+def failure_kinds(summ):
+    return {k: v for k, v in summ["kinds"].items() if k.startswith(FAILURE_PREFIXES)}
+
+
+def format_table(summaries):
+    kinds = sorted({k for s in summaries for k in s["kinds"]})
+    lines = ["| family | cases | batches | failing cases | " + " | ".join(kinds) + " | time [s] |",
+             "|---|---:|---:|---:|" + "---:|" * len(kinds) + "---:|"]
+    for s in summaries:
+        lines.append(f"| {s['family']} | {s['cases']} | {s['batches']} | {s['failing_cases']} | "
+                     + " | ".join(str(s["kinds"].get(k, 0)) for k in kinds)
+                     + f" | {sum(s['batch_times']):.0f} |")
+    return "\n".join(lines)
+
+
+def format_checks(summaries):
+    lines = ["| family | checked (pairs / runs) | boundary (tight re-run agrees) | reported | skipped | "
+             "slowest batch [s] |", "|---|---|---|---|---|---:|"]
+    for s in summaries:
+        fmt = lambda C: ", ".join(f"{k} {v}" for k, v in sorted(C.items())) or "-"  # noqa: E731
+        lines.append(f"| {s['family']} | {fmt(s['checked'])} | {fmt(s['boundary'])} | {fmt(s['reported'])} | "
+                     f"{fmt(s['skipped'])} | {s.get('batch_times_max', 0):.1f} |")
+    return "\n".join(lines)
+
+
+def format_first(summaries, n_params=True):
+    out = []
+    for s in summaries:
+        for kd, f in sorted(s["first"].items()):
+            if not kd.startswith(FAILURE_PREFIXES):
+                continue
+            P = f["params"]
+            a, fr_, sg = f["cell"]
+            out.append(f"- {s['family']} `{kd}`: batch `{f['batch']}` (replay: `python bench/fuzz.py --replay "
+                       f"{f['batch']}`), cell a_p/(g tan a) = {a:.6g}, omega_p/p = {fr_:.6g}, sign {sg:+d}; "
+                       f"{scene_text(P)}" + (f"; {'; '.join(f['detail'])[:300]}" if f["detail"] else ""))
+    return "\n".join(out)
+
+
+def scene_text(P):
+    B = P["body"]
+    if B["kind"] == "rectangle":
+        body = f"RigidBlock.rectangle(b={B['b']:.6g}, h={B['h']:.6g}, e={B['e'] if B['e'] is None else round(B['e'], 6)})"
+    elif B["kind"] == "alpha_p":
+        body = f"RigidBlock(alpha={B['alpha']:.6g}, p={B['p']:.6g}, e={B['e'] if B['e'] is None else round(B['e'], 6)})"
+    else:
+        body = (f"FlexibleBody(alpha={B['alpha']:.6g}, p={B['p']:.6g}, omega_n_over_p={B['omega_n_over_p']:.6g}, "
+                f"zeta={B['zeta']:.4g}, impact={B['impact']!r}, rotary_inertia_ratio={B['rotary_inertia_ratio']:.4g}, "
+                f"base_mass_ratio={B['base_mass_ratio']}, base_cm_height={B['base_cm_height']:.4g})")
+    parts = [body, f"pulse={P['pulse']!r}"]
+    if P["wall"]:
+        W = P["wall"]
+        parts.append(f"Wall(gap={W['gap']:.6g}, side={W['side']}, height={W['height']}, "
+                     f"restitution={W['restitution']:.4g})")
+    if P["friction"]:
+        F = P["friction"]
+        parts.append(f"Friction({F['mu_s']:.6g}, {F['mu_k']:.6g}" +
+                     (f", lift_off={F['lift_off']!r})" if "lift_off" in F else ")"))
+    if P["foundation"]:
+        D = P["foundation"]
+        parts.append(f"foundation {D['type']} omega/p={D['omega_over_p']:.5g} zeta={D['zeta']:.4g} "
+                     f"e_f={D['e_f']:.4g} mass={P['mass']:.5g}")
+    parts.append(f"dt=2pi/w_max/{P['dt_per']:.4g}" if P["dt_per"] else f"rtol={P['rtol']:.3g}")
+    return ", ".join(parts)
+
+
+def replay(batch_id, time_limit=120.0, chunk=32):
+    fam, seed, b = batch_id.split(":")
+    P = draw_batch(fam, int(seed), int(b), chunk)
+    print(json.dumps(P, indent=1))
+    res = run_batch(P, time_limit)
+    for k, kinds in case_kinds(res).items():
+        c = res.cases[k]
+        print(k, c["status"], c["outcome"], f"{c['max_rotation_ratio']:.9g}", kinds or "ok",
+              " | ".join(res.details.get(k, [])))
+    print("times", res.times, "boundary", dict(res.boundary), "reported", dict(res.reported),
+          "checked", dict(res.checked))
+    return res
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--family", default="all", help="one of " + ", ".join(FAMILIES) + ", or all, or a comma list")
+    ap.add_argument("--cases", type=int, default=1000, help="main-grid cases per family")
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--chunk", type=int, default=32, help="runs per batch (a sqrt(chunk/2) square grid x 2 signs)")
+    ap.add_argument("--out", default=None, help="CSV of every case")
+    ap.add_argument("--time-limit", type=float, default=120.0, help="seconds per batch (and per check run)")
+    ap.add_argument("--no-checks", action="store_true", help="status and NaN only (no invariants, no simulate)")
+    ap.add_argument("--replay", default=None, help="re-run one batch, e.g. wall:1:17")
+    ap.add_argument("--quiet", action="store_true")
+    a = ap.parse_args(argv)
+    if a.replay:
+        replay(a.replay, a.time_limit, a.chunk)
+        return 0
+    fams = FAMILIES if a.family == "all" else tuple(a.family.split(","))
+    for f in fams:
+        if f not in FAMILIES:
+            ap.error(f"unknown family {f!r}")
+    t_start = time.perf_counter()
+    all_rows, sums = [], []
+    for fam in fams:
+        t0 = time.perf_counter()
+
+        def progress(P, res, wall, _fam=fam, _t0=t0):
+            if not a.quiet:
+                n_bad = sum(1 for k in res.cases if res.tags.get(k))
+                sys.stderr.write(f"\r{_fam}: batch {P['id']} {wall:6.2f} s, {n_bad} failing, "
+                                 f"{time.perf_counter() - _t0:7.1f} s total   ")
+                sys.stderr.flush()
+        rows, summ = run_family(fam, a.cases, a.seed, a.chunk, a.time_limit, not a.no_checks, not a.no_checks,
+                                on_batch=progress)
+        if not a.quiet:
+            sys.stderr.write("\n")
+        summ["seconds"] = time.perf_counter() - t0
+        all_rows.extend(rows)
+        sums.append(summ)
+        if a.out:
+            pd.DataFrame(all_rows).to_csv(a.out, index=False)
+    total = time.perf_counter() - t_start
+    print(f"\nfastrock fuzz: seed {a.seed}, chunk {a.chunk}, time limit {a.time_limit} s, "
+          f"{time.strftime('%Y-%m-%d %H:%M')}, total {total:.0f} s\n")
+    print(format_table(sums))
+    print()
+    print(format_checks(sums))
+    eg = [g for s in sums for g in s["energy_growth"]]
+    if eg:
+        print(f"\nenergy rise after the pulse (relative): median {np.median(eg):.2g}, max {np.max(eg):.2g} "
+              f"over {len(eg)} simulate runs")
+    first = format_first(sums)
+    if first:
+        print("\nfirst failure of each kind:\n" + first)
+    return 1 if any(s["failing_cases"] for s in sums) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
