@@ -19,14 +19,13 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import excitation_end, ground, ground_rates
-from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
-                     sweep_rows)
+from .hybrid import (book_time, check_energy, init_metrics, integrate_hybrid,
+                     log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
                      EV_UPLIFT, FLIGHT, M_ENERGY_GAINS, M_IMPACTS, M_MAX_U,
-                     M_MIN_U, M_T_CONTACT, M_T_LAST_IMPACT, M_T_PREV, M_T_ROCK,
-                     M_T_UPLIFT, MODE_REST, MODE_ROCK, N_DISC, O_EARLY_EXIT,
-                     O_EPS_OMEGA, O_T0, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT,
-                     SAFE_REST)
+                     M_MIN_U, M_T_LAST_IMPACT, M_T_UPLIFT, MODE_REST,
+                     MODE_ROCK, N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0,
+                     RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
 from .rigid import initial_pivot, overturned, passed_alpha, track_rotation
 
 F_ALPHA = 0
@@ -190,17 +189,6 @@ def track_u(u, met):
         met[M_MAX_U] = u
     if -u > met[M_MIN_U]:
         met[M_MIN_U] = -u
-
-
-@jit
-def book_time(t, disc, met):
-    dt = t - met[M_T_PREV]
-    if dt > 0.0:
-        if disc[D_MODE] == MODE_ROCK:
-            met[M_T_ROCK] += dt
-        else:
-            met[M_T_CONTACT] += dt
-    met[M_T_PREV] = t
 
 
 @jit

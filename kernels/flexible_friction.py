@@ -40,16 +40,14 @@ from .flexible import (F_ALPHA, F_B, F_G, F_H, F_HB, F_MB, F_THETA_OVER, F_WN,
                        F_ZETA, base_inertia, free_column_bound, never_uplifts_again,
                        positions, track_u, uplift_margin)
 from .friction import initial_contact, track_slide
-from .hybrid import check_energy, integrate_hybrid, log_event, sweep_rows
+from .hybrid import book_time, check_energy, integrate_hybrid, log_event, sweep_rows
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_LIFT_OFF_HELD, EV_RELOAD, FAIL_INCONSISTENT,
-                     M_N_LIFT_OFF, M_T_SLIP_START, M_T_UNLOADED, EV_IMPACT,
-                     EV_SLIP, EV_STICK, EV_UPLIFT, FLIGHT, M_IMPACTS,
-                     M_N_STICK_SLIP, M_T_CONTACT, M_T_LAST_IMPACT, M_T_PREV,
-                     M_T_ROCK, M_T_SLIDE, M_T_SLIDE_ROCK, M_T_UPLIFT,
-                     MODE_REST, MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK, N_DISC,
-                     O_EARLY_EXIT, O_T0, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT,
-                     SAFE_REST)
+                     M_N_LIFT_OFF, M_T_SLIP_START, EV_IMPACT, EV_SLIP,
+                     EV_STICK, EV_UPLIFT, FLIGHT, M_IMPACTS, M_N_STICK_SLIP,
+                     M_T_LAST_IMPACT, M_T_UPLIFT, MODE_REST, MODE_ROCK,
+                     MODE_SLIDE, MODE_SLIDE_ROCK, N_DISC, O_EARLY_EXIT, O_T0,
+                     RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
 from .rigid import UPLIFT_RTOL, overturned, passed_alpha, track_rotation
 
 Q_MU_S = 14
@@ -276,24 +274,6 @@ def event(k, t, y, par, disc, hdr, smp):
 @jit
 def static_margin(t, y, par, disc, hdr, smp):
     return 1.0   # no static phase: the column vibrates in full contact
-
-
-@jit
-def book_time(t, disc, met):
-    dt = t - met[M_T_PREV]
-    if dt > 0.0:
-        m = disc[D_MODE]
-        if m == MODE_SLIDE:
-            met[M_T_SLIDE] += dt
-        elif m == MODE_SLIDE_ROCK:
-            met[M_T_SLIDE_ROCK] += dt
-            if disc[D_SLIP_DIR] == 0:
-                met[M_T_UNLOADED] += dt
-        elif m == MODE_ROCK:
-            met[M_T_ROCK] += dt
-        else:
-            met[M_T_CONTACT] += dt
-    met[M_T_PREV] = t
 
 
 @jit

@@ -59,13 +59,13 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
-                     sweep_rows)
+from .hybrid import (book_time, check_energy, init_metrics, integrate_hybrid,
+                     log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
-                     EV_UPLIFT, FLIGHT, M_IMPACTS, M_T_CONTACT,
-                     M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_PREV, M_T_ROCK,
-                     M_T_UPLIFT, MODE_FLIGHT, MODE_REST, MODE_ROCK, N_DISC,
-                     O_T0, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
+                     EV_UPLIFT, FLIGHT, M_IMPACTS, M_T_LAST_IMPACT,
+                     M_T_PASS_ALPHA, M_T_UPLIFT, MODE_FLIGHT, MODE_REST,
+                     MODE_ROCK, N_DISC, O_T0, RUNNING, SAFE_MOVING,
+                     SAFE_NO_UPLIFT, SAFE_REST)
 from .rigid import (N_PAR as N_RIGID_PAR, P_ALPHA, P_G, P_P, P_THETA_OVER,
                     overturned, passed_alpha, theta_ddot, track_rotation)
 
@@ -94,18 +94,6 @@ THETA_SIDE_EPS = 1e-12
 
 
 # ============================================================== shared pieces
-@jit
-def account_time(t, disc, met):
-    """Attribute the time since the last bookkeeping to the current mode."""
-    dt = t - met[M_T_PREV]
-    if dt > 0.0:
-        if disc[D_MODE] == MODE_REST:
-            met[M_T_CONTACT] += dt
-        elif disc[D_MODE] == MODE_ROCK:
-            met[M_T_ROCK] += dt
-        met[M_T_PREV] = t
-
-
 @jit
 def cross_event(theta, dtheta, disc):
     """Zero crossing of the rotation: g = side * theta (terminal)."""
@@ -311,7 +299,7 @@ def ts_corner_transition(side, slot, t, y, par, disc, met, log, cnt):
 
 @jit
 def ts_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
-    account_time(t, disc, met)
+    book_time(t, disc, met)
     if k == TS_RIGHT:
         return ts_corner_transition(1.0, D_RIGHT, t, y, par, disc, met, log,
                                     cnt)
@@ -335,7 +323,7 @@ def never_static(t, y, par, disc, hdr, smp):
 @jit
 def ts_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     track_rotation(y[2], met)
-    account_time(t, disc, met)
+    book_time(t, disc, met)
     if at_end:
         return final_status(disc, met)
     return RUNNING
@@ -450,7 +438,7 @@ def sw_event(k, t, y, par, disc, hdr, smp):
 
 @jit
 def sw_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
-    account_time(t, disc, met)
+    book_time(t, disc, met)
     if k == SW_SWITCH:
         if disc[D_MODE] == MODE_ROCK:
             pre = y[1]
@@ -482,7 +470,7 @@ def sw_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
 @jit
 def sw_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     track_rotation(y[0], met)
-    account_time(t, disc, met)
+    book_time(t, disc, met)
     if at_end:
         return final_status(disc, met)
     return RUNNING
@@ -550,7 +538,7 @@ def ls_event(k, t, y, par, disc, hdr, smp):
 
 @jit
 def ls_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
-    account_time(t, disc, met)
+    book_time(t, disc, met)
     if k == LS_CROSS:
         cross_transition(y, 0, disc)
     else:
@@ -561,7 +549,7 @@ def ls_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
 @jit
 def ls_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     track_rotation(y[0], met)
-    account_time(t, disc, met)
+    book_time(t, disc, met)
     if at_end:
         return SAFE_NO_UPLIFT
     return RUNNING

@@ -27,15 +27,15 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
-                     sweep_rows)
+from .hybrid import (book_time, check_energy, init_metrics, integrate_hybrid,
+                     log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_IMPACT, EV_REST, EV_SLIP, EV_STICK, EV_UPLIFT, FLIGHT,
                      M_IMPACTS, M_MAX_SLIDE, M_N_STICK_SLIP, M_RESIDUAL_SLIDE,
-                     M_T_LAST_IMPACT, M_T_PREV, M_T_ROCK, M_T_SLIDE,
-                     M_T_SLIDE_ROCK, M_T_UPLIFT, MODE_REST, MODE_ROCK,
-                     MODE_SLIDE, MODE_SLIDE_ROCK, N_DISC, O_EPS_OMEGA, O_EPS_T,
-                     O_T0, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
+                     M_T_LAST_IMPACT, M_T_UPLIFT, MODE_REST, MODE_ROCK,
+                     MODE_SLIDE, MODE_SLIDE_ROCK, N_DISC, O_EPS_OMEGA,
+                     O_EPS_T, O_T0, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT,
+                     SAFE_REST)
 from .rigid import (P_ALPHA, P_E, P_G, P_THETA_OVER, UPLIFT_RTOL, initial_pivot,
                     overturned, passed_alpha, track_rotation)
 
@@ -156,20 +156,6 @@ def static_margin(t, y, par, disc, hdr, smp):
     G = par[P_G] + av
     lim = min(par[Q_MU_S], par[Q_B] / par[Q_H]) * G * (1.0 + UPLIFT_RTOL)
     return min(lim - abs(ag), G)
-
-
-@jit
-def book_time(t, disc, met):
-    dt = t - met[M_T_PREV]
-    if dt > 0.0:
-        m = disc[D_MODE]
-        if m == MODE_SLIDE:
-            met[M_T_SLIDE] += dt
-        elif m == MODE_SLIDE_ROCK:
-            met[M_T_SLIDE_ROCK] += dt
-        elif m == MODE_ROCK:
-            met[M_T_ROCK] += dt
-    met[M_T_PREV] = t
 
 
 @jit

@@ -33,7 +33,10 @@ from .dopri import (N_STAGES, dense_coefficients, dense_eval, error_norm,
                     fixed_step_error, rk_step, select_initial_step, step_factor)
 from .excitation import (excitation_end, excitation_start, next_breakpoint,
                          scan_origin, scan_step)
-from .layout import (M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA, M_T_PREV,
+from .layout import (D_MODE, D_SLIP_DIR, MODE_REST, MODE_ROCK, MODE_SLIDE,
+                     MODE_SLIDE_ROCK, M_T_CONTACT, M_T_ROCK, M_T_SLIDE,
+                     M_T_SLIDE_ROCK, M_T_UNLOADED,
+                     M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA, M_T_PREV,
                      M_T_UPLIFT, D_STATIC, FAIL_EVENT, FAIL_OUTPUT_FULL,
                      FAIL_STEP_BUDGET, FAIL_STEP_UNDERFLOW, FAIL_TRANSITIONS,
                      LOG_KIND, LOG_PIVOT, LOG_POST, LOG_PRE, LOG_T, LOG_THETA,
@@ -67,6 +70,29 @@ def init_metrics(t0, met):
     met[M_T_LAST_IMPACT] = -np.inf
     met[M_T_PREV] = t0
     met[M_DT_STABLE] = np.nan
+
+
+@jit
+def book_time(t, disc, met):
+    """Attribute the time since the last bookkeeping to the contact mode
+    (the one rule of every model): full contact at rest to M_T_CONTACT,
+    rocking to M_T_ROCK, sliding to M_T_SLIDE, slide-rocking to
+    M_T_SLIDE_ROCK (and to M_T_UNLOADED while a lift-off is held, slip
+    direction 0); other modes book nothing."""
+    dt = t - met[M_T_PREV]
+    if dt > 0.0:
+        m = disc[D_MODE]
+        if m == MODE_REST:
+            met[M_T_CONTACT] += dt
+        elif m == MODE_ROCK:
+            met[M_T_ROCK] += dt
+        elif m == MODE_SLIDE:
+            met[M_T_SLIDE] += dt
+        elif m == MODE_SLIDE_ROCK:
+            met[M_T_SLIDE_ROCK] += dt
+            if disc[D_SLIP_DIR] == 0:
+                met[M_T_UNLOADED] += dt
+    met[M_T_PREV] = t
 
 
 @jit
