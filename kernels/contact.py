@@ -1,0 +1,1287 @@
+"""Contact core: a planar rigid body with a set of contact points, the
+contact mode picked by the generic mode solve (physics.md 4.2, 4.6; issue
+#13 item 5).  First version: rigid block on rigid ground with Coulomb
+friction and free flight (stage 1), and a rear wall touched by the top
+corner on its side (stage 2).
+
+Body (per unit mass)
+--------------------
+Centroidal i_G = I_G / M (par[C_IG]); contact points, body frame, relative
+to the centre of mass (CM):
+
+    0  left base corner   (-b1, -h1)
+    1  right base corner  ( b2, -h2)
+    2  wall corner: the top corner on the wall side w, (w b_w, ht_w), with
+       b_w = b2 (w = +1) or b1 (w = -1), ht_w = par[C_HT2] or par[C_HT1]
+
+Body-frame (a, c) maps to world (a cos th + c sin th, -a sin th + c cos th)
+(physics.md 0).  Gravity is the vector (0, -G), G = g + a_v, written in one
+place only (``free_acc``); the horizontal ground acceleration enters as the
+d'Alembert force -a_g.  The flat configuration assumes a level base
+(h1 = h2); the rocking ground-impact map (``ground_impact``, the map of
+kernels/friction.py) assumes the symmetric block b1 = b2, h1 = h2.
+
+State
+-----
+``y = (theta, theta', x, x', z, z')``: rotation [rad] and the position
+[m] of the base reference point P relative to the ground: P is the body
+point (0, -hm) below the CM, hm = (h1 + h2) / 2 (for the symmetric block
+the base midpoint); x = 0, z = 0 at rest at the origin.  The CM is at
+(x + hm sin th, z + hm cos th).  Every phase integrates all six entries:
+in contact modes the accelerations come from the mode solve, so they are
+consistent with the contact constraints (the corner stays on the ground up
+to the integration error); z, z' (and x' for a sticking contact) are
+re-projected onto the active constraints at every transition, so no
+constraint drift builds up over phases.  No event depends on x.  In flight
+x'' = -a_g - hm(...), i.e. the CM follows x_G'' = -a_g, y_G'' = -G,
+theta'' = 0.
+
+Discrete state: D_MODE (REST, SLIDE, ROCK, SLIDE_ROCK, FLIGHT,
+WALL_REST), D_PIVOT s (rocking corner; 0 left = -1, 1 right = +1),
+D_STATIC, D_SLIP_DIR sigma (ground slip direction), and the state of each
+contact point in disc[D_CS0 + k]: CS_OPEN, CS_STICK, CS_SLIP_P
+(sigma = +1), CS_SLIP_N (sigma = -1), CS_FREE (frictionless: normal force
+only).
+
+Mode solve (``solve_contacts``)
+-------------------------------
+Unknowns: the contact forces of the closed contacts (a normal force N_k
+per contact, a friction force F_k per sticking contact; a slipping contact
+has F_k = -mu_k sigma_k N_k).  Equations: one row per constraint (normal
+acceleration of a closed contact 0; tangential acceleration of a sticking
+one 0), with the CM and rotation accelerations eliminated through
+M a = f: a small dense system (<= 6 x 6, Gaussian elimination with partial
+pivoting), then the admissibility checks (N >= 0, |F| <= mu_s N, rocking
+away from the ground, slip not reversed).  The same routine solves the
+impulse problem of a landing (velocities instead of accelerations).
+
+Modes and transitions
+---------------------
+REST (static phase, ended by ``static_margin``), SLIDE, ROCK, SLIDE_ROCK,
+FLIGHT.  Flight starts when the normal force of the active contact(s)
+reaches 0 (event K_LIFT) and ends with a landing at the corner that
+reaches the ground first moving down (K_LAND0, K_LAND1): plastic normal
+impact with Coulomb friction (stick if |L_t| <= mu_s L_n, else Routh's
+incremental slipping impact), flat two-point landing when the other
+corner is on the ground and would penetrate.  Ground impacts while rocking
+(theta crosses 0) use the map of kernels/friction.py (restitution e,
+algebraic slip rule, Routh's method where it fails), so mu = inf
+reproduces kernels/rigid.py and finite mu kernels/friction.py.  After every
+impact the mode is picked again.  Stick-slip and impact chatter end by the
+rest rule (O_EPS_OMEGA, O_EPS_T) as in kernels/friction.py.
+
+Events (g > 0 admissible; inactive ones return inf)
+---------------------------------------------------
+  0 K_IMPACT      s theta                 ROCK, SLIDE_ROCK
+  1 K_OVERTURN    theta_over - s theta    (FLIGHT: theta_over - |theta|)
+  2 K_SLIP        mu_s N - |F|            ROCK
+  3 K_STICK       sigma v_t               SLIDE, SLIDE_ROCK
+  4 K_LIFT        N (SLIDE: min N_k)      contact modes
+  5 K_PEAK        s theta'                observer
+  6 K_PASS_ALPHA  alpha - s theta         observer (FLIGHT: alpha - |theta|)
+  7 K_LAND0       height of corner 0 while it moves down (inf otherwise)
+  8 K_LAND1       height of corner 1 while it moves down
+  9 K_APEX        vertical CM velocity    FLIGHT observer (jump height)
+ 10 K_WALL        wall gap of the wall corner while it approaches
+
+Parameters (``par``, N_PAR entries)
+-----------------------------------
+ 0-4 as kernels/rigid.py: P_ALPHA, P_P, P_E (ground restitution e),
+     P_G, P_THETA_OVER (so rigid.overturned etc. apply)
+ 5   P_WALL_SIDE w = +-1 (kernels/rigid.py index)
+ 7   P_E_W wall restitution e_w (kernels/rigid.py index)
+ 10  C_B1  m, half-width left of the CM  (= friction Q_B)
+ 11  C_H1  m, CM height above the left corner (= friction Q_H)
+ 12  C_IG  m^2, I_G / M                  (= friction Q_IG)
+ 13  C_MU_S static friction (inf allowed) (= friction Q_MU_S)
+ 14  C_MU_K kinetic friction              (= friction Q_MU_K)
+ 15  C_B2  m, half-width right of the CM
+ 16  C_H2  m, CM height above the right corner
+ 17  C_GAP m, wall gap d (inf or nan: no wall)
+ 18  C_MU_W wall friction (0: frictionless; only 0 is implemented)
+ 19  C_HT1 m, height of the top-left corner above the CM
+ 20  C_HT2 m, height of the top-right corner above the CM
+A friction parameter vector (kernels/friction.py) extended to N_PAR with
+C_B2 = Q_B, C_H2 = Q_H is a valid contact parameter vector.
+
+Metrics
+-------
+The layout metrics (max |theta|, impacts, times, M_MAX_SLIDE,
+M_RESIDUAL_SLIDE, M_T_SLIDE, M_T_SLIDE_ROCK, M_T_ROCK, M_T_CONTACT (REST
+and SLIDE), M_N_STICK_SLIP, wall impacts), plus, in slots the rigid
+friction model does not use:
+  M_N_FLIGHTS   = M_N_LIFT_OFF (27)  number of flights
+  M_T_FLIGHT    = M_T_UNLOADED (26)  s, time in flight
+  M_MAX_JUMP    = 31                 m, largest rise of the CM above its
+                                     rest height during a flight
+Landings count as ground impacts (M_IMPACTS).  The slide is the horizontal
+displacement of the active base contact from its rest position (of x at
+rest), tracked in contact modes only.
+"""
+import math
+
+import numpy as np
+
+from .config import jit, jit_parallel
+from .excitation import excitation_end, ground, ground_rates
+from .friction import kinetic as fr_kinetic
+from .friction import routh_impact
+from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
+                     sweep_rows)
+from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, D_WALL_REST,
+                     EV_CONTACT, EV_FLIGHT, EV_IMPACT, EV_REST, EV_SLIP,
+                     EV_STICK, EV_UPLIFT, EV_WALL_IMPACT, EV_WALL_RELEASE,
+                     EV_WALL_REST, FAIL_INCONSISTENT, LEANING, M_IMPACTS,
+                     M_MAX_SLIDE, M_N_LIFT_OFF, M_N_STICK_SLIP,
+                     M_RESIDUAL_SLIDE, M_T_CONTACT, M_T_LAST_IMPACT, M_T_PREV,
+                     M_T_ROCK, M_T_SLIDE, M_T_SLIDE_ROCK, M_T_UNLOADED,
+                     M_T_UPLIFT, M_WALL_IMPACTS, MODE_FLIGHT, MODE_REST,
+                     MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK, MODE_WALL_REST,
+                     N_DISC, N_MET, O_EPS_OMEGA, O_EPS_T, O_T0, RUNNING,
+                     SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
+from .rigid import (P_ALPHA, P_E, P_E_W, P_G, P_THETA_OVER, P_WALL_SIDE,
+                    UPLIFT_RTOL, initial_pivot, overturned, passed_alpha,
+                    track_rotation)
+
+# ---- parameters (see the module docstring) ---------------------------------
+C_B1 = 10
+C_H1 = 11
+C_IG = 12
+C_MU_S = 13
+C_MU_K = 14
+C_B2 = 15
+C_H2 = 16
+C_GAP = 17
+C_MU_W = 18
+C_HT1 = 19
+C_HT2 = 20
+N_PAR = 24
+N_STATE = 6
+
+# ---- metrics in slots the rigid friction model leaves free (module-local) --
+M_N_FLIGHTS = M_N_LIFT_OFF      # 27: number of flights
+M_T_FLIGHT = M_T_UNLOADED       # 26: s in flight
+M_MAX_JUMP = 31                 # m, largest CM rise above rest in flight
+assert M_MAX_JUMP < N_MET
+
+# ---- discrete state: one contact state per contact point -------------------
+D_CS0 = 5
+D_CS1 = 6
+D_CS2 = 7
+assert D_CS2 < N_DISC
+CS_OPEN = 0
+CS_STICK = 1
+CS_SLIP_P = 2
+CS_SLIP_N = 3
+CS_FREE = 4       # frictionless: normal force only
+
+# ---- events ----------------------------------------------------------------
+K_IMPACT = 0
+K_OVERTURN = 1
+K_SLIP = 2
+K_STICK = 3
+K_LIFT = 4
+K_PEAK = 5
+K_PASS_ALPHA = 6
+K_LAND0 = 7
+K_LAND1 = 8
+K_APEX = 9
+K_WALL = 10
+N_EVENTS = 11
+
+# a tangential contact velocity below this [m/s] counts as zero (stick test)
+V_TOL = 1e-12
+# the other base corner counts as on the ground at a landing below this [m]
+# (relative to the base width): the landing is then flat
+FLAT_RTOL = 1e-9
+MAX_N = 6
+
+
+# ---------------------------------------------------------------- geometry
+@jit
+def body_point(k, par):
+    """Body-frame coordinates of contact point k relative to the CM."""
+    if k == 0:
+        return -par[C_B1], -par[C_H1]
+    if k == 1:
+        return par[C_B2], -par[C_H2]
+    if par[P_WALL_SIDE] > 0.0:
+        return par[C_B2], par[C_HT2]
+    return -par[C_B1], par[C_HT1]
+
+
+@jit
+def frame(k, par):
+    """(nx, ny, tx, ty): contact normal (toward the body) and tangent."""
+    if k < 2:
+        return 0.0, 1.0, 1.0, 0.0
+    return -par[P_WALL_SIDE], 0.0, 0.0, 1.0
+
+
+@jit
+def hmid(par):
+    return 0.5 * (par[C_H1] + par[C_H2])
+
+
+@jit
+def cm_velocity(y, par):
+    """(v_Gx, v_Gy) from the state."""
+    hm = hmid(par)
+    c = math.cos(y[0])
+    sn = math.sin(y[0])
+    return y[3] + y[1] * hm * c, y[5] - y[1] * hm * sn
+
+
+@jit
+def point_offset(k, theta, par):
+    """World vector from the CM to contact point k."""
+    cx, cy = body_point(k, par)
+    c = math.cos(theta)
+    sn = math.sin(theta)
+    return cx * c + cy * sn, -cx * sn + cy * c
+
+
+@jit
+def point_kin(k, y, par):
+    """(gap, normal velocity, tangential velocity) of contact point k; the
+    gap is the height above the ground (k < 2) or the clear distance to the
+    wall (k = 2)."""
+    th = y[0]
+    om = y[1]
+    hm = hmid(par)
+    rx, ry = point_offset(k, th, par)
+    gx = y[2] + hm * math.sin(th)
+    gy = y[4] + hm * math.cos(th)
+    vgx, vgy = cm_velocity(y, par)
+    vx = vgx + om * ry
+    vy = vgy - om * rx
+    nx, ny, tx, ty = frame(k, par)
+    if k < 2:
+        gap = gy + ry
+    else:
+        w = par[P_WALL_SIDE]
+        bw = par[C_B2] if w > 0.0 else par[C_B1]
+        gap = bw + par[C_GAP] - w * (gx + rx)
+    return gap, nx * vx + ny * vy, tx * vx + ty * vy
+
+
+@jit
+def free_acc(t, par, hdr, smp):
+    """Generalized acceleration (x_G'', y_G'', theta'') with no contact
+    force: the only place where gravity (0, -G) enters."""
+    ag, av = ground(t, hdr, smp)
+    return -ag, -(par[P_G] + av), 0.0
+
+
+@jit
+def state_from_cm(y, par, agx, agy, alpha):
+    """(x'', z'') of P from the CM accelerations and theta''."""
+    hm = hmid(par)
+    th = y[0]
+    om2 = y[1] * y[1]
+    c = math.cos(th)
+    sn = math.sin(th)
+    return agx - hm * (c * alpha - sn * om2), agy + hm * (sn * alpha + c * om2)
+
+
+@jit
+def set_cm_velocity(y, par, vgx, vgy, om):
+    """Write the velocity part of y from (v_Gx, v_Gy, theta')."""
+    hm = hmid(par)
+    c = math.cos(y[0])
+    sn = math.sin(y[0])
+    y[1] = om
+    y[3] = vgx - om * hm * c
+    y[5] = vgy + om * hm * sn
+
+
+# ---------------------------------------------------------------- mode solve
+@jit
+def contact_mu(k, par, kinetic):
+    if k == 2:
+        return par[C_MU_W]
+    return par[C_MU_K] if kinetic else par[C_MU_S]
+
+
+@jit
+def solve_contacts(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, out):
+    """The generic mode solve of physics.md 4.2 (and its impulse form).
+
+    Contact k is in state st_k (CS_*).  With ``b0`` the generalized
+    acceleration without contact forces and om2 = theta'^2, solves for the
+    contact forces that keep every closed contact's normal acceleration
+    (and a sticking one's tangential acceleration) zero; with ``b0`` the
+    pre-impact generalized velocity and om2 = 0, for the impulses that make
+    those velocities zero.  ``out`` receives b0 + M^-1 Q (x_G'', y_G'',
+    theta'' or the post-impact velocities).  Returns (ok, N0, F0, N1, F1,
+    N2, F2); ok is False for a singular system (e.g. both base corners
+    sticking: REST is a static phase, never solved here).
+    """
+    iG = par[C_IG]
+    c = math.cos(theta)
+    sn = math.sin(theta)
+    # ws[i]: 0-2 constraint row J, 3-5 force column, 6-11 matrix row,
+    # 12 right-hand side, 13 owner contact, 14 kind (0 N, 1 F), 15 -mu sigma
+    ws = np.zeros((MAX_N, 16))
+    n = 0
+    for k in range(3):
+        st = st0 if k == 0 else (st1 if k == 1 else st2)
+        if st == CS_OPEN:
+            continue
+        cx, cy = body_point(k, par)
+        rx = cx * c + cy * sn
+        ry = -cx * sn + cy * c
+        nx, ny, tx, ty = frame(k, par)
+        jn2 = ry * nx - rx * ny
+        jt2 = ry * tx - rx * ty
+        m = 0.0
+        if st == CS_SLIP_P:
+            m = -contact_mu(k, par, True)
+        elif st == CS_SLIP_N:
+            m = contact_mu(k, par, True)
+        # normal row, normal-force column
+        ws[n, 0] = nx
+        ws[n, 1] = ny
+        ws[n, 2] = jn2
+        ws[n, 3] = nx + m * tx
+        ws[n, 4] = ny + m * ty
+        ws[n, 5] = jn2 + m * jt2
+        ws[n, 12] = om2 * (nx * rx + ny * ry) - (nx * b0x + ny * b0y
+                                                  + jn2 * b0w)
+        ws[n, 13] = k
+        ws[n, 14] = 0.0
+        ws[n, 15] = m
+        n += 1
+        if st == CS_STICK:
+            ws[n, 0] = tx
+            ws[n, 1] = ty
+            ws[n, 2] = jt2
+            ws[n, 3] = tx
+            ws[n, 4] = ty
+            ws[n, 5] = jt2
+            ws[n, 12] = om2 * (tx * rx + ty * ry) - (tx * b0x + ty * b0y
+                                                      + jt2 * b0w)
+            ws[n, 13] = k
+            ws[n, 14] = 1.0
+            n += 1
+    scale = 0.0
+    for i in range(n):
+        for j in range(n):
+            a = ws[i, 0] * ws[j, 3] + ws[i, 1] * ws[j, 4] + \
+                ws[i, 2] * ws[j, 5] / iG
+            ws[i, 6 + j] = a
+            scale = max(scale, abs(a))
+    # Gaussian elimination with partial pivoting on ws[:, 6:6+n | 12]
+    ok = True
+    for col in range(n):
+        piv = col
+        for i in range(col + 1, n):
+            if abs(ws[i, 6 + col]) > abs(ws[piv, 6 + col]):
+                piv = i
+        if not abs(ws[piv, 6 + col]) > 1e-12 * scale:
+            ok = False
+            break
+        if piv != col:
+            for j in range(6, 13):
+                tmp = ws[col, j]
+                ws[col, j] = ws[piv, j]
+                ws[piv, j] = tmp
+        for i in range(col + 1, n):
+            f = ws[i, 6 + col] / ws[col, 6 + col]
+            if f != 0.0:
+                for j in range(6 + col, 13):
+                    ws[i, j] -= f * ws[col, j]
+    lam = np.zeros(MAX_N)
+    if ok:
+        for i in range(n - 1, -1, -1):
+            s = ws[i, 12]
+            for j in range(i + 1, n):
+                s -= ws[i, 6 + j] * lam[j]
+            lam[i] = s / ws[i, 6 + i]
+    qx = 0.0
+    qy = 0.0
+    qw = 0.0
+    N0 = F0 = N1 = F1 = N2 = F2 = 0.0
+    for j in range(n):
+        qx += ws[j, 3] * lam[j]
+        qy += ws[j, 4] * lam[j]
+        qw += ws[j, 5] * lam[j]
+        k = int(ws[j, 13])
+        if ws[j, 14] == 0.0:
+            Nk = lam[j]
+            Fk = ws[j, 15] * lam[j]
+            if k == 0:
+                N0 = Nk
+                F0 += Fk
+            elif k == 1:
+                N1 = Nk
+                F1 += Fk
+            else:
+                N2 = Nk
+                F2 += Fk
+        else:
+            if k == 0:
+                F0 += lam[j]
+            elif k == 1:
+                F1 += lam[j]
+            else:
+                F2 += lam[j]
+    out[0] = b0x + qx
+    out[1] = b0y + qy
+    out[2] = b0w + qw / iG
+    return ok, N0, F0, N1, F1, N2, F2
+
+
+@jit
+def mode_solve(t, y, par, st0, st1, st2, hdr, smp, acc):
+    """Accelerations (x_G'', y_G'', theta'') and contact forces at time t
+    for the contact states st_k (physics.md 4.2)."""
+    bx, by, bw = free_acc(t, par, hdr, smp)
+    return solve_contacts(y[0], bx, by, bw, y[1] * y[1], par, st0, st1, st2,
+                          acc)
+
+
+@jit
+def contact_acc(k, y, par, acc):
+    """(normal, tangential) acceleration of contact point k for the
+    generalized acceleration acc."""
+    rx, ry = point_offset(k, y[0], par)
+    nx, ny, tx, ty = frame(k, par)
+    om2 = y[1] * y[1]
+    ax = acc[0] + acc[2] * ry - om2 * rx
+    ay = acc[1] - acc[2] * rx - om2 * ry
+    return nx * ax + ny * ay, tx * ax + ty * ay
+
+
+@jit
+def free_normal_acc(j, t, y, par, hdr, smp):
+    """Normal acceleration of base corner j with no contact force."""
+    ag, av = ground(t, hdr, smp)
+    rx, ry = point_offset(j, y[0], par)
+    return -(par[P_G] + av) - y[1] * y[1] * ry
+
+
+@jit
+def stick_holds(N, j, t, y, par, hdr, smp):
+    """A sticking base corner j stays on the ground: N >= 0, or, with
+    mu_s = inf, while flight is inconsistent (the free corner would
+    accelerate into the ground): the pivot is held as in kernels/rigid.py
+    (with N = 0 and F != 0 no finite friction could stick)."""
+    if N >= 0.0:
+        return True
+    if np.isfinite(par[C_MU_S]):
+        return False
+    return free_normal_acc(j, t, y, par, hdr, smp) < 0.0
+
+
+@jit
+def slip_state(sigma):
+    return CS_SLIP_P if sigma > 0 else CS_SLIP_N
+
+
+@jit
+def sign_of(v):
+    return 1 if v > 0.0 else -1
+
+
+# ---------------------------------------------------------------- rhs
+@jit
+def rhs(t, y, par, disc, hdr, smp, out):
+    acc = np.empty(3)
+    if disc[D_MODE] == MODE_FLIGHT or disc[D_STATIC] == 1:
+        bx, by, bw = free_acc(t, par, hdr, smp)
+        acc[0] = bx
+        acc[1] = by
+        acc[2] = bw
+        if disc[D_STATIC] == 1:
+            acc[0] = 0.0
+            acc[1] = 0.0
+            acc[2] = 0.0
+    else:
+        mode_solve(t, y, par, disc[D_CS0], disc[D_CS1], disc[D_CS2], hdr, smp,
+                   acc)
+    xdd, zdd = state_from_cm(y, par, acc[0], acc[1], acc[2])
+    out[0] = y[1]
+    out[1] = acc[2]
+    out[2] = y[3]
+    out[3] = xdd
+    out[4] = y[5]
+    out[5] = zdd
+
+
+# ---------------------------------------------------------------- events
+@jit
+def wall_active(par):
+    return np.isfinite(par[C_GAP])
+
+
+@jit
+def event(k, t, y, par, disc, hdr, smp):
+    mode = disc[D_MODE]
+    s = disc[D_PIVOT]
+    if mode == MODE_FLIGHT:
+        if k == K_OVERTURN:
+            sg = 1.0 if y[0] >= 0.0 else -1.0
+            return par[P_THETA_OVER] - abs(y[0]), -sg * y[1], True
+        if k == K_PASS_ALPHA:
+            sg = 1.0 if y[0] >= 0.0 else -1.0
+            return par[P_ALPHA] - abs(y[0]), -sg * y[1], False
+        if k == K_LAND0 or k == K_LAND1 or k == K_WALL:
+            if k == K_WALL and not wall_active(par):
+                return np.inf, 0.0, True
+            j = k - K_LAND0 if k != K_WALL else 2
+            gap, vn, _vt = point_kin(j, y, par)
+            if vn < 0.0:
+                return gap, vn, True
+            return np.inf, 0.0, True
+        if k == K_APEX:
+            _ag, av = ground(t, hdr, smp)
+            _vx, vy = cm_velocity(y, par)
+            return vy, -(par[P_G] + av), False
+        return np.inf, 0.0, True
+    if mode == MODE_SLIDE:
+        if k == K_STICK or k == K_LIFT:
+            acc = np.empty(3)
+            _ok, N0, _F0, N1, _F1, _N2, _F2 = mode_solve(
+                t, y, par, disc[D_CS0], disc[D_CS1], disc[D_CS2], hdr, smp,
+                acc)
+            if k == K_LIFT:
+                return min(N0, N1), 0.0, True
+            sig = disc[D_SLIP_DIR]
+            _an, at = contact_acc(0, y, par, acc)
+            _g, _vn, vt = point_kin(0, y, par)
+            return sig * vt, sig * at, True
+        return np.inf, 0.0, True
+    if mode != MODE_ROCK and mode != MODE_SLIDE_ROCK:
+        return np.inf, 0.0, True
+    if k == K_IMPACT:
+        return s * y[0], s * y[1], True
+    if k == K_OVERTURN:
+        return par[P_THETA_OVER] - s * y[0], -s * y[1], True
+    if k == K_PASS_ALPHA:
+        return par[P_ALPHA] - s * y[0], -s * y[1], False
+    if k == K_SLIP and mode != MODE_ROCK:
+        return np.inf, 0.0, True
+    if k == K_STICK and mode != MODE_SLIDE_ROCK:
+        return np.inf, 0.0, True
+    if k == K_WALL:
+        if not wall_active(par) or s != par[P_WALL_SIDE]:
+            return np.inf, 0.0, True
+        gap, vn, _vt = point_kin(2, y, par)
+        if vn < 0.0:
+            return gap, vn, True
+        return np.inf, 0.0, True
+    if k > K_PASS_ALPHA:
+        return np.inf, 0.0, True
+    acc = np.empty(3)
+    _ok, N0, F0, N1, F1, _N2, _F2 = mode_solve(
+        t, y, par, disc[D_CS0], disc[D_CS1], disc[D_CS2], hdr, smp, acc)
+    if k == K_PEAK:
+        return s * y[1], s * acc[2], False
+    j = 1 if s > 0 else 0
+    N = N1 if j == 1 else N0
+    F = F1 if j == 1 else F0
+    if k == K_LIFT:
+        if mode == MODE_ROCK and not np.isfinite(par[C_MU_S]):
+            return max(N, -free_normal_acc(j, t, y, par, hdr, smp)), 0.0, True
+        return N, 0.0, True
+    if k == K_SLIP:
+        mu = par[C_MU_S]
+        if not np.isfinite(mu):
+            return np.inf, 0.0, True
+        return mu * N - abs(F), 0.0, True
+    # K_STICK (SLIDE_ROCK)
+    sig = disc[D_SLIP_DIR]
+    _an, at = contact_acc(j, y, par, acc)
+    _g, _vn, vt = point_kin(j, y, par)
+    return sig * vt, sig * at, True
+
+
+@jit
+def rest_margin(t, par, hdr, smp):
+    """Full contact (both base corners sticking) holds while the friction
+    demand |a_g| <= mu_s G and neither corner's normal force is negative:
+    N_left = (b2 G + h a_g)/(b1 + b2) >= 0, N_right = (b1 G - h a_g) /
+    (b1 + b2) >= 0 (physics.md 1, 4.3), with kernels/friction.py's
+    tolerance; negative also for G < 0 (flight)."""
+    ag, av = ground(t, hdr, smp)
+    G = par[P_G] + av
+    h = hmid(par)
+    tol = 1.0 + UPLIFT_RTOL
+    m = min(G * par[C_B2] / h * tol + ag, G * par[C_B1] / h * tol - ag)
+    mu = par[C_MU_S]
+    if np.isfinite(mu):
+        m = min(m, mu * G * tol - abs(ag))
+    return min(m, G)
+
+
+@jit
+def static_margin(t, y, par, disc, hdr, smp):
+    if disc[D_MODE] == MODE_WALL_REST:
+        return wall_rest_margin(t, y, par, hdr, smp)
+    return rest_margin(t, par, hdr, smp)
+
+
+# ---------------------------------------------------------------- bookkeeping
+@jit
+def book_time(t, disc, met):
+    """Time spent in the current mode since the last bookkeeping."""
+    dt = t - met[M_T_PREV]
+    if dt > 0.0:
+        m = disc[D_MODE]
+        if m == MODE_SLIDE:
+            met[M_T_SLIDE] += dt
+            met[M_T_CONTACT] += dt
+        elif m == MODE_REST:
+            met[M_T_CONTACT] += dt
+        elif m == MODE_SLIDE_ROCK:
+            met[M_T_SLIDE_ROCK] += dt
+        elif m == MODE_ROCK:
+            met[M_T_ROCK] += dt
+        elif m == MODE_FLIGHT:
+            met[M_T_FLIGHT] += dt
+    met[M_T_PREV] = t
+
+
+@jit
+def slide_of(y, par, disc):
+    """Horizontal displacement of the active base contact from its rest
+    position (nan in flight)."""
+    m = disc[D_MODE]
+    if m == MODE_FLIGHT:
+        return np.nan
+    if m == MODE_ROCK or m == MODE_SLIDE_ROCK or m == MODE_WALL_REST:
+        j = 1 if disc[D_PIVOT] > 0 else 0
+        cx, _cy = body_point(j, par)
+        rx, _ry = point_offset(j, y[0], par)
+        hm = hmid(par)
+        return y[2] + hm * math.sin(y[0]) + rx - cx
+    return y[2]
+
+
+@jit
+def track_slide(y, par, disc, met):
+    d = slide_of(y, par, disc)
+    if np.isnan(d):
+        return
+    if abs(d) > met[M_MAX_SLIDE]:
+        met[M_MAX_SLIDE] = abs(d)
+    met[M_RESIDUAL_SLIDE] = d
+
+
+@jit
+def track_jump(y, par, met):
+    rise = y[4] + hmid(par) * (math.cos(y[0]) - 1.0)
+    if rise > met[M_MAX_JUMP]:
+        met[M_MAX_JUMP] = rise
+
+
+@jit
+def set_contacts(disc, st0, st1, st2):
+    """Contact states -> mode, pivot, slip direction, static flag."""
+    disc[D_CS0] = st0
+    disc[D_CS1] = st1
+    disc[D_CS2] = st2
+    disc[D_STATIC] = 0
+    disc[D_WALL_REST] = 0
+    c0 = st0 != CS_OPEN
+    c1 = st1 != CS_OPEN
+    if c0 and c1:
+        if st0 == CS_STICK and st1 == CS_STICK:
+            disc[D_MODE] = MODE_REST
+            disc[D_STATIC] = 1
+            disc[D_SLIP_DIR] = 0
+        else:
+            disc[D_MODE] = MODE_SLIDE
+            disc[D_SLIP_DIR] = 1 if st0 == CS_SLIP_P else -1
+        return
+    if c0 or c1:
+        j = 1 if c1 else 0
+        st = st1 if c1 else st0
+        disc[D_PIVOT] = 1 if j == 1 else -1
+        if st2 != CS_OPEN and st == CS_STICK:
+            disc[D_MODE] = MODE_WALL_REST
+            disc[D_STATIC] = 1
+            disc[D_WALL_REST] = 1
+            disc[D_SLIP_DIR] = 0
+        elif st == CS_STICK:
+            disc[D_MODE] = MODE_ROCK
+            disc[D_SLIP_DIR] = 0
+        else:
+            disc[D_MODE] = MODE_SLIDE_ROCK
+            disc[D_SLIP_DIR] = 1 if st == CS_SLIP_P else -1
+        return
+    disc[D_MODE] = MODE_FLIGHT
+    disc[D_SLIP_DIR] = 0
+
+
+@jit
+def project_single(j, y, par, stick):
+    """Put base corner j on the ground with zero normal velocity (and zero
+    tangential velocity when it sticks)."""
+    gap, vn, vt = point_kin(j, y, par)
+    y[4] -= gap
+    y[5] -= vn
+    if stick:
+        y[3] -= vt
+
+
+@jit
+def project_flat(y, stick):
+    y[0] = 0.0
+    y[1] = 0.0
+    y[4] = 0.0
+    y[5] = 0.0
+    if stick:
+        y[3] = 0.0
+
+
+@jit
+def mark_uplift(t, met):
+    if np.isnan(met[M_T_UPLIFT]):
+        met[M_T_UPLIFT] = t
+
+
+@jit
+def enter_flight(t, y, par, disc, met, log, cnt):
+    s = disc[D_PIVOT]
+    set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+    disc[D_PIVOT] = s
+    met[M_N_FLIGHTS] += 1
+    mark_uplift(t, met)
+    track_jump(y, par, met)
+    log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], y[0], s)
+    return RUNNING
+
+
+# ---------------------------------------------------------------- mode pick
+@jit
+def pick_flat(t, y, par, disc, hdr, smp, met, log, cnt):
+    """Both base corners on the ground, theta = theta' = 0 (rest, end of a
+    slide phase, flat landing, chatter): pick REST, ROCK, SLIDE_ROCK,
+    SLIDE or FLIGHT by the mode solve (physics.md 4.2-4.3, 4.6)."""
+    _g, _vn, v = point_kin(0, y, par)
+    if abs(v) <= V_TOL:
+        v = 0.0
+    project_flat(y, v == 0.0)
+    ag, av = ground(t, hdr, smp)
+    G = par[P_G] + av
+    if G <= 0.0:
+        return enter_flight(t, y, par, disc, met, log, cnt)
+    acc = np.empty(3)
+    if v != 0.0:
+        sig = sign_of(v)
+        st = slip_state(sig)
+        ok, N0, _F0, N1, _F1, _N2, _F2 = mode_solve(t, y, par, st, st,
+                                                    CS_OPEN, hdr, smp, acc)
+        if ok and N0 >= 0.0 and N1 >= 0.0:
+            set_contacts(disc, st, st, CS_OPEN)
+            return RUNNING
+        for s in (sig, -sig):
+            j = 1 if s > 0 else 0
+            ok, N0, _F0, N1, _F1, _N2, _F2 = mode_solve(
+                t, y, par, st if j == 0 else CS_OPEN,
+                st if j == 1 else CS_OPEN, CS_OPEN, hdr, smp, acc)
+            N = N1 if j == 1 else N0
+            if ok and N >= 0.0 and s * acc[2] > 0.0:
+                set_contacts(disc, st if j == 0 else CS_OPEN,
+                             st if j == 1 else CS_OPEN, CS_OPEN)
+                mark_uplift(t, met)
+                log_event(log, cnt, t, EV_UPLIFT, 0.0, 0.0, 0.0, s)
+                return RUNNING
+        log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sig)
+        return FAIL_INCONSISTENT
+    if rest_margin(t, par, hdr, smp) >= 0.0:
+        set_contacts(disc, CS_STICK, CS_STICK, CS_OPEN)
+        return RUNNING
+    h = hmid(par)
+    tol = 1.0 + UPLIFT_RTOL
+    s = -1 if ag > 0.0 else 1
+    bs = par[C_B2] if s > 0 else par[C_B1]
+    j = 1 if s > 0 else 0
+    if abs(ag) > G * bs / h * tol:
+        # rocking demanded about s: stick-rock if friction holds
+        st0 = CS_STICK if j == 0 else CS_OPEN
+        st1 = CS_STICK if j == 1 else CS_OPEN
+        ok, N0, F0, N1, F1, _N2, _F2 = mode_solve(t, y, par, st0, st1,
+                                                  CS_OPEN, hdr, smp, acc)
+        N = N1 if j == 1 else N0
+        F = F1 if j == 1 else F0
+        if ok and N >= 0.0 and abs(F) <= par[C_MU_S] * N:
+            set_contacts(disc, st0, st1, CS_OPEN)
+            mark_uplift(t, met)
+            log_event(log, cnt, t, EV_UPLIFT, 0.0, 0.0, 0.0, s)
+            return RUNNING
+        sig = -1 if F > 0.0 else 1
+        sp = sig
+        jp = 1 if sp > 0 else 0
+        st = slip_state(sig)
+        st0 = st if jp == 0 else CS_OPEN
+        st1 = st if jp == 1 else CS_OPEN
+        ok, N0, _F0, N1, _F1, _N2, _F2 = mode_solve(t, y, par, st0, st1,
+                                                    CS_OPEN, hdr, smp, acc)
+        N = N1 if jp == 1 else N0
+        _an, at = contact_acc(jp, y, par, acc)
+        if ok and N >= 0.0 and sp * acc[2] > 0.0 and sig * at >= 0.0:
+            set_contacts(disc, st0, st1, CS_OPEN)
+            mark_uplift(t, met)
+            met[M_N_STICK_SLIP] += 1
+            log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sig)
+            return RUNNING
+        st = slip_state(sig)
+        set_contacts(disc, st, st, CS_OPEN)
+        met[M_N_STICK_SLIP] += 1
+        log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sig)
+        return RUNNING
+    # friction fails first: slide against the ground acceleration
+    sig = -1 if ag > 0.0 else 1
+    st = slip_state(sig)
+    set_contacts(disc, st, st, CS_OPEN)
+    met[M_N_STICK_SLIP] += 1
+    log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sig)
+    return RUNNING
+
+
+@jit
+def pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, forbid_stick):
+    """Base corner j on the ground (after an impact or landing, or at a
+    stick / slip event), the other one off it: pick ROCK, SLIDE_ROCK or
+    FLIGHT by the mode solve."""
+    project_single(j, y, par, False)
+    _g, _vn, vt = point_kin(j, y, par)
+    if abs(vt) <= V_TOL:
+        y[3] -= vt
+        vt = 0.0
+    acc = np.empty(3)
+    s = 1 if j == 1 else -1
+    if vt == 0.0:
+        st0 = CS_STICK if j == 0 else CS_OPEN
+        st1 = CS_STICK if j == 1 else CS_OPEN
+        ok, N0, F0, N1, F1, _N2, _F2 = mode_solve(t, y, par, st0, st1,
+                                                  CS_OPEN, hdr, smp, acc)
+        N = N1 if j == 1 else N0
+        F = F1 if j == 1 else F0
+        if not (ok and stick_holds(N, j, t, y, par, hdr, smp)):
+            return enter_flight(t, y, par, disc, met, log, cnt)
+        if not forbid_stick and (abs(F) <= par[C_MU_S] * N
+                                 or not np.isfinite(par[C_MU_S])):
+            set_contacts(disc, st0, st1, CS_OPEN)
+            return RUNNING
+        sig = -1 if F > 0.0 else 1
+        met[M_N_STICK_SLIP] += 1
+        log_event(log, cnt, t, EV_SLIP, y[1], y[1], y[0], sig)
+    else:
+        sig = sign_of(vt)
+    st = slip_state(sig)
+    st0 = st if j == 0 else CS_OPEN
+    st1 = st if j == 1 else CS_OPEN
+    ok, N0, _F0, N1, _F1, _N2, _F2 = mode_solve(t, y, par, st0, st1, CS_OPEN,
+                                                hdr, smp, acc)
+    N = N1 if j == 1 else N0
+    if not (ok and N >= 0.0):
+        return enter_flight(t, y, par, disc, met, log, cnt)
+    set_contacts(disc, st0, st1, CS_OPEN)
+    disc[D_PIVOT] = s
+    return RUNNING
+
+
+# ---------------------------------------------------------------- impacts
+@jit
+def kinetic_energy(y, par):
+    vx, vy = cm_velocity(y, par)
+    return 0.5 * (vx * vx + vy * vy + par[C_IG] * y[1] * y[1])
+
+
+@jit
+def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    """theta reached 0 while rocking on s: the map of kernels/friction.py
+    (physics.md 1 and 4.3; symmetric block): stick impact at the new corner
+    with restitution e, theta'+ = e theta'- + (h / i_0) v_s, then the
+    impulse-ratio check, the algebraic slipping impact and Routh's
+    incremental impact where the algebraic rule fails."""
+    s = disc[D_PIVOT]
+    j_old = 1 if s > 0 else 0
+    _g, _vn, vs = point_kin(j_old, y, par)
+    pre = y[1]
+    e = par[P_E]
+    b = par[C_B1]
+    h = par[C_H1]
+    iG = par[C_IG]
+    i0 = iG + b * b + h * h
+    met[M_IMPACTS] += 1
+    chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
+    met[M_T_LAST_IMPACT] = t
+    post = e * pre + (h / i0) * vs
+    lam_x = h * post - (vs + h * pre)
+    lam_y = -s * b * (post + pre)
+    dpost = 0.0
+    if abs(lam_x) > par[C_MU_S] * lam_y:
+        sigma = -1.0 if lam_x > 0.0 else 1.0
+        kk = par[C_MU_K] * sigma * h + s * b
+        post = pre * (iG - kk * s * b) / (iG + kk * s * b)
+        lam_y = -s * b * (post + pre)
+        dpost = vs + h * pre - h * post - par[C_MU_K] * sigma * lam_y
+        if (sigma * dpost < 0.0 or lam_y <= 0.0
+                or fr_kinetic(post, dpost, -s, b, h, iG)
+                > fr_kinetic(pre, vs, s, b, h, iG)):
+            post, dpost = routh_impact(pre, vs, s, b, h, iG, par[C_MU_S],
+                                       par[C_MU_K])
+    check_energy(fr_kinetic(pre, vs, s, b, h, iG),
+                 fr_kinetic(post, dpost, -s, b, h, iG), met)
+    log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)
+    # new pivot -s: theta = 0, its velocity (dpost, 0)
+    j = 1 - j_old
+    y[0] = 0.0
+    y[1] = post
+    rx, ry = point_offset(j, 0.0, par)
+    hm = hmid(par)
+    # v_G = v_c - theta' (ry, -rx)
+    set_cm_velocity(y, par, dpost - post * ry, post * rx, post)
+    y[4] = -(ry + hm)
+    if abs(post) < opt[O_EPS_OMEGA] or chatter:
+        y[1] = 0.0
+        y[3] = dpost
+        st = pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+        if disc[D_MODE] == MODE_REST:
+            log_event(log, cnt, t, EV_REST, post, 0.0, 0.0, 0)
+        return st
+    disc[D_PIVOT] = -s
+    if dpost != 0.0:
+        st = slip_state(1 if dpost > 0.0 else -1)
+        set_contacts(disc, st if j == 0 else CS_OPEN,
+                     st if j == 1 else CS_OPEN, CS_OPEN)
+        disc[D_PIVOT] = -s
+        return RUNNING
+    return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
+@jit
+def routh_general(wtt, wtn, wnn, vt, vn, mu_s, mu_k):
+    """Plastic frictional point impact by Routh's incremental method (the
+    algorithm of kernels/friction.routh_impact for any 2x2 contact-space
+    inverse inertia W = [[wtt, wtn], [wtn, wnn]] and contact velocity
+    (vt, vn), vn < 0).  Returns the impulses (pt, pn)."""
+    pt = 0.0
+    pn = 0.0
+    for _phase in range(4):
+        if vn >= 0.0:
+            break
+        if vt == 0.0:
+            if abs(wtn) <= mu_s * wtt:
+                at = 0.0
+                an = wnn - wtn * wtn / wtt
+                rate_t = -wtn / wtt
+            else:
+                sig = 1.0 if wtn > 0.0 else -1.0
+                rate_t = -mu_k * sig
+                at = rate_t * wtt + wtn
+                an = rate_t * wtn + wnn
+        else:
+            sig = 1.0 if vt > 0.0 else -1.0
+            rate_t = -mu_k * sig
+            at = rate_t * wtt + wtn
+            an = rate_t * wtn + wnn
+        if an <= 0.0:
+            det = wtt * wnn - wtn * wtn
+            pt += (-wnn * vt + wtn * vn) / det
+            pn += (wtn * vt - wtt * vn) / det
+            vt = 0.0
+            vn = 0.0
+            break
+        dp = -vn / an
+        if vt * at < 0.0 and -vt / at < dp:
+            dp = -vt / at
+            pt += rate_t * dp
+            pn += dp
+            vn += an * dp
+            vt = 0.0
+            continue
+        pt += rate_t * dp
+        pn += dp
+        vt += at * dp
+        vn = 0.0
+    return pt, pn
+
+
+@jit
+def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    """Base corner j reached the ground moving down in flight (physics.md
+    4.6): plastic normal impact with Coulomb friction at j (stick if
+    |L_t| <= mu_s L_n, else Routh's slipping impact), or the flat two-point
+    landing when the other corner is on the ground and would penetrate.
+    Then the mode is picked again."""
+    iG = par[C_IG]
+    before = kinetic_energy(y, par)
+    vgx, vgy = cm_velocity(y, par)
+    om = y[1]
+    met[M_IMPACTS] += 1
+    met[M_T_LAST_IMPACT] = t
+    post = np.empty(3)
+    st0 = CS_STICK if j == 0 else CS_OPEN
+    st1 = CS_STICK if j == 1 else CS_OPEN
+    ok, N0, F0, N1, F1, _N2, _F2 = solve_contacts(
+        y[0], vgx, vgy, om, 0.0, par, st0, st1, CS_OPEN, post)
+    Ln = N1 if j == 1 else N0
+    Lt = F1 if j == 1 else F0
+    if not (ok and Ln >= 0.0 and (abs(Lt) <= par[C_MU_S] * Ln
+                                  or not np.isfinite(par[C_MU_S]))):
+        rx, ry = point_offset(j, y[0], par)
+        # contact-space inverse inertia for (t, n) = ((1, 0), (0, 1))
+        wtt = 1.0 + ry * ry / iG
+        wtn = -ry * rx / iG
+        wnn = 1.0 + rx * rx / iG
+        _gap, vn, vt = point_kin(j, y, par)
+        pt, pn = routh_general(wtt, wtn, wnn, vt, vn, par[C_MU_S],
+                               par[C_MU_K])
+        post[0] = vgx + pt
+        post[1] = vgy + pn
+        post[2] = om + (ry * pt - rx * pn) / iG
+    # the other corner: on the ground and penetrating -> flat landing
+    o = 1 - j
+    bw = par[C_B1] + par[C_B2]
+    tmp = y.copy()
+    set_cm_velocity(tmp, par, post[0], post[1], post[2])
+    gap_o, vn_o, _vt_o = point_kin(o, tmp, par)
+    flat = gap_o <= FLAT_RTOL * bw and vn_o < 0.0
+    if flat:
+        _g, _vn, vt = point_kin(0, y, par)
+        ok, N0, F0, N1, F1, _N2, _F2 = solve_contacts(
+            y[0], vgx, vgy, om, 0.0, par, CS_STICK, CS_FREE, CS_OPEN, post)
+        if not (ok and N0 >= 0.0 and N1 >= 0.0 and
+                (abs(F0) <= par[C_MU_S] * (N0 + N1)
+                 or not np.isfinite(par[C_MU_S]))):
+            sig = sign_of(vt) if vt != 0.0 else (-1 if F0 > 0.0 else 1)
+            st = slip_state(sig)
+            stick_post = post.copy()
+            ok2, N0, F0, N1, F1, _N2, _F2 = solve_contacts(
+                y[0], vgx, vgy, om, 0.0, par, st, st, CS_OPEN, post)
+            tmp2 = y.copy()
+            set_cm_velocity(tmp2, par, post[0], post[1], post[2])
+            _g, _vn, vt2 = point_kin(0, tmp2, par)
+            if not (ok2 and N0 >= 0.0 and N1 >= 0.0) or sig * vt2 < 0.0:
+                # slip would reverse inside the impact: it ends sticking
+                for i in range(3):
+                    post[i] = stick_post[i]
+    set_cm_velocity(y, par, post[0], post[1], post[2])
+    after = kinetic_energy(y, par)
+    check_energy(before, after, met)
+    log_event(log, cnt, t, EV_CONTACT, om, y[1], y[0], 1 if j == 1 else -1)
+    if flat:
+        st = pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+        if disc[D_MODE] == MODE_REST:
+            log_event(log, cnt, t, EV_REST, om, 0.0, 0.0, 0)
+        return st
+    return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
+# ---------------------------------------------------------------- wall
+@jit
+def wall_rest_margin(t, y, par, hdr, smp):
+    """Resting on the wall (pivot on the wall side, sticking): the phase
+    holds while the wall's normal force and the pivot's are >= 0 and the
+    pivot sticks (mode solve with the wall contact closed)."""
+    te = np.inf if t >= excitation_end(hdr) else t
+    acc = np.empty(3)
+    w = par[P_WALL_SIDE]
+    j = 1 if w > 0.0 else 0
+    st0 = CS_STICK if j == 0 else CS_OPEN
+    st1 = CS_STICK if j == 1 else CS_OPEN
+    bx, by, bw = free_acc(te, par, hdr, smp)
+    ok, N0, F0, N1, F1, N2, _F2 = solve_contacts(
+        y[0], bx, by, bw, 0.0, par, st0, st1, CS_FREE, acc)
+    N = N1 if j == 1 else N0
+    F = F1 if j == 1 else F0
+    m = min(N2, N)
+    mu = par[C_MU_S]
+    if np.isfinite(mu):
+        m = min(m, mu * N - abs(F))
+    if not ok:
+        return -1.0
+    return m
+
+
+@jit
+def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    """The wall corner reached the wall while rocking on the near corner:
+    frictionless wall, sticking pivot: theta'+ = -e_w theta'- about the
+    pivot (as kernels/wall.py)."""
+    s = disc[D_PIVOT]
+    j = 1 if s > 0 else 0
+    pre = y[1]
+    post = -par[P_E_W] * pre
+    before = kinetic_energy(y, par)
+    rx, ry = point_offset(j, y[0], par)
+    _g, _vn, vt = point_kin(j, y, par)
+    # pivot velocity kept (vt, 0); v_G = v_c - theta' (ry, -rx)
+    set_cm_velocity(y, par, vt - post * ry, post * rx, post)
+    check_energy(before, kinetic_energy(y, par), met)
+    met[M_WALL_IMPACTS] += 1
+    track_rotation(y[0], met)
+    log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, y[0], s)
+    chatter = abs(post) < opt[O_EPS_OMEGA] or \
+        t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
+    met[M_T_LAST_IMPACT] = t
+    if chatter and vt == 0.0:
+        y[1] = 0.0
+        project_single(j, y, par, True)
+        if wall_rest_margin(t, y, par, hdr, smp) >= 0.0:
+            set_contacts(disc, CS_STICK if j == 0 else CS_OPEN,
+                         CS_STICK if j == 1 else CS_OPEN, CS_FREE)
+            disc[D_PIVOT] = s
+            log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
+            return RUNNING
+    return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
+# ---------------------------------------------------------------- transition
+@jit
+def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    if k < 0:
+        book_time(t, disc, met)
+        if disc[D_MODE] == MODE_WALL_REST:
+            s = disc[D_PIVOT]
+            j = 1 if s > 0 else 0
+            log_event(log, cnt, t, EV_WALL_RELEASE, 0.0, 0.0, y[0], s)
+            return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
+                               False)
+        return pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+    if k == K_PEAK:
+        track_rotation(y[0], met)
+        return RUNNING
+    if k == K_PASS_ALPHA:
+        s = disc[D_PIVOT]
+        if disc[D_MODE] == MODE_FLIGHT:
+            s = 1 if y[0] > 0.0 else -1
+        passed_alpha(t, y[0], y[1], s, met, log, cnt)
+        return RUNNING
+    if k == K_APEX:
+        track_jump(y, par, met)
+        return RUNNING
+    book_time(t, disc, met)
+    track_slide(y, par, disc, met)
+    mode = disc[D_MODE]
+    s = disc[D_PIVOT]
+    j = 1 if s > 0 else 0
+    if k == K_OVERTURN:
+        if mode == MODE_FLIGHT:
+            s = 1 if y[0] > 0.0 else -1
+        return overturned(t, y[0], y[1], s, met, log, cnt)
+    if k == K_IMPACT:
+        return ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
+    if k == K_LAND0 or k == K_LAND1:
+        return landing(k - K_LAND0, t, y, par, disc, hdr, smp, opt, met, log,
+                       cnt)
+    if k == K_WALL:
+        return wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
+    if k == K_LIFT:
+        if mode == MODE_SLIDE:
+            return pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+        return enter_flight(t, y, par, disc, met, log, cnt)
+    if k == K_SLIP:
+        return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, True)
+    # K_STICK: the slip velocity reached zero
+    met[M_N_STICK_SLIP] += 1
+    if mode == MODE_SLIDE:
+        y[3] = 0.0
+        log_event(log, cnt, t, EV_STICK, 0.0, 0.0, 0.0, 0)
+        return pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+    _g, _vn, vt = point_kin(j, y, par)
+    y[3] -= vt
+    log_event(log, cnt, t, EV_STICK, y[1], y[1], y[0], s)
+    return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
+@jit
+def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
+    book_time(t, disc, met)
+    mode = disc[D_MODE]
+    if mode == MODE_FLIGHT:
+        track_jump(y, par, met)
+    else:
+        track_slide(y, par, disc, met)
+    if mode != MODE_SLIDE:
+        track_rotation(y[0], met)
+    if at_end:
+        if mode == MODE_REST:
+            if np.isnan(met[M_T_UPLIFT]):
+                return SAFE_NO_UPLIFT
+            return SAFE_REST
+        if mode == MODE_WALL_REST:
+            if abs(y[0]) > par[P_ALPHA]:
+                return LEANING
+            return SAFE_REST
+        return SAFE_MOVING
+    return RUNNING
+
+
+# ---------------------------------------------------------------- run
+@jit
+def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
+    """Initial mode from y = (theta, theta', x, x', z, z'): flight if both
+    base corners are above the ground; else full contact at theta =
+    theta' = 0 (REST, or SLIDE if x' != 0) or rocking on the pivot of
+    kernels/rigid.initial_pivot (sticking if its slip velocity is 0), with
+    z, z' projected onto the contact."""
+    init_metrics(t0, met)
+    met[M_MAX_JUMP] = 0.0
+    for i in range(N_DISC):
+        disc[i] = 0
+    disc[D_PIVOT] = 1
+    g0, _v0, _t0 = point_kin(0, y, par)
+    g1, _v1, _t1 = point_kin(1, y, par)
+    tol = FLAT_RTOL * (par[C_B1] + par[C_B2])
+    if g0 > tol and g1 > tol:
+        disc[D_PIVOT] = 1 if y[0] >= 0.0 else -1
+        set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+        met[M_T_UPLIFT] = t0
+        track_rotation(y[0], met)
+        return
+    if y[0] == 0.0 and y[1] == 0.0:
+        project_flat(y, False)
+        if y[3] != 0.0:
+            st = slip_state(sign_of(y[3]))
+            set_contacts(disc, st, st, CS_OPEN)
+        else:
+            set_contacts(disc, CS_STICK, CS_STICK, CS_OPEN)
+        track_slide(y, par, disc, met)
+        return
+    s = initial_pivot(y[0], y[1])
+    j = 1 if s > 0 else 0
+    project_single(j, y, par, False)
+    _g, _vn, vt = point_kin(j, y, par)
+    if abs(vt) <= V_TOL:
+        y[3] -= vt
+        st = CS_STICK
+    else:
+        st = slip_state(sign_of(vt))
+    set_contacts(disc, st if j == 0 else CS_OPEN, st if j == 1 else CS_OPEN,
+                 CS_OPEN)
+    disc[D_PIVOT] = s
+    met[M_T_UPLIFT] = t0
+    track_rotation(y[0], met)
+    track_slide(y, par, disc, met)
+
+
+@jit
+def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
+        cnt):
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
+    return integrate_hybrid(rhs, event, transition, static_margin,
+                            after_step, N_EVENTS, y, par, disc, hdr, smp,
+                            opt, t_eval, met, hist_t, hist_y, hist_d, log,
+                            cnt)
+
+
+@jit
+def contact_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                     hist_d, log, cnt):
+    """One run of the contact-core rigid body (time history, events)."""
+    return run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+               log, cnt)
+
+
+@jit_parallel
+def contact_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Independent runs in parallel (rows of Y0/PAR/HDR/OPT)."""
+    sweep_rows(run, Y0, PAR, HDR, smp, OPT, status, MET, YF)
