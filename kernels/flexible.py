@@ -19,13 +19,12 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import excitation_end, ground, ground_rates
-from .hybrid import (book_time, check_energy, init_metrics, integrate_hybrid,
-                     log_event, sweep_rows)
+from .hybrid import (book_time, check_energy, final_status, init_metrics,
+                     integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
-                     EV_UPLIFT, FLIGHT, M_ENERGY_GAINS, M_IMPACTS, M_MAX_U,
-                     M_MIN_U, M_T_LAST_IMPACT, M_T_UPLIFT, MODE_REST,
-                     MODE_ROCK, N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0,
-                     RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
+                     EV_UPLIFT, FLIGHT, MODE_REST, MODE_ROCK, M_ENERGY_GAINS,
+                     M_IMPACTS, M_MAX_U, M_MIN_U, M_T_LAST_IMPACT, M_T_UPLIFT,
+                     N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0, RUNNING)
 from .rigid import initial_pivot, overturned, passed_alpha, track_rotation
 
 F_ALPHA = 0
@@ -312,17 +311,9 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     track_u(y[0], met)
     if disc[D_MODE] == MODE_ROCK:
         track_rotation(y[2], met)
-    if at_end:
-        if np.isnan(met[M_T_UPLIFT]):
-            return SAFE_NO_UPLIFT
-        if disc[D_MODE] == MODE_REST:
-            return SAFE_REST
-        return SAFE_MOVING
-    if opt[O_EARLY_EXIT] != 0.0 and disc[D_MODE] == MODE_REST:
-        if never_uplifts_again(t, y, par, hdr):
-            if np.isnan(met[M_T_UPLIFT]):
-                return SAFE_NO_UPLIFT
-            return SAFE_REST
+    if at_end or (opt[O_EARLY_EXIT] != 0.0 and disc[D_MODE] == MODE_REST
+                  and never_uplifts_again(t, y, par, hdr)):
+        return final_status(disc, met)
     return RUNNING
 
 

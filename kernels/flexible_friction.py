@@ -40,14 +40,15 @@ from .flexible import (F_ALPHA, F_B, F_G, F_H, F_HB, F_MB, F_THETA_OVER, F_WN,
                        F_ZETA, base_inertia, free_column_bound, never_uplifts_again,
                        positions, track_u, uplift_margin)
 from .friction import initial_contact, track_slide
-from .hybrid import book_time, check_energy, integrate_hybrid, log_event, sweep_rows
+from .hybrid import (book_time, check_energy, final_status, integrate_hybrid,
+                     log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
-                     EV_LIFT_OFF_HELD, EV_RELOAD, FAIL_INCONSISTENT,
-                     M_N_LIFT_OFF, M_T_SLIP_START, EV_IMPACT, EV_SLIP,
-                     EV_STICK, EV_UPLIFT, FLIGHT, M_IMPACTS, M_N_STICK_SLIP,
-                     M_T_LAST_IMPACT, M_T_UPLIFT, MODE_REST, MODE_ROCK,
-                     MODE_SLIDE, MODE_SLIDE_ROCK, N_DISC, O_EARLY_EXIT, O_T0,
-                     RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
+                     EV_IMPACT, EV_LIFT_OFF_HELD, EV_RELOAD, EV_SLIP, EV_STICK,
+                     EV_UPLIFT, FAIL_INCONSISTENT, FLIGHT, MODE_REST,
+                     MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK, M_IMPACTS,
+                     M_N_LIFT_OFF, M_N_STICK_SLIP, M_T_LAST_IMPACT,
+                     M_T_SLIP_START, M_T_UPLIFT, N_DISC, O_EARLY_EXIT, O_T0,
+                     RUNNING)
 from .rigid import UPLIFT_RTOL, overturned, passed_alpha, track_rotation
 
 Q_MU_S = 14
@@ -552,11 +553,7 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
         track_rotation(y[2], met)
     if at_end or (opt[O_EARLY_EXIT] != 0.0 and mode == MODE_REST
                   and settled_for_good(t, y, par, hdr)):
-        if mode == MODE_REST:
-            if np.isnan(met[M_T_UPLIFT]):
-                return SAFE_NO_UPLIFT
-            return SAFE_REST
-        return SAFE_MOVING
+        return final_status(disc, met)
     return RUNNING
 
 

@@ -59,13 +59,12 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import (book_time, check_energy, init_metrics, integrate_hybrid,
-                     log_event, sweep_rows)
+from .hybrid import (book_time, check_energy, final_status, init_metrics,
+                     integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
-                     EV_UPLIFT, FLIGHT, M_IMPACTS, M_T_LAST_IMPACT,
-                     M_T_PASS_ALPHA, M_T_UPLIFT, MODE_FLIGHT, MODE_REST,
-                     MODE_ROCK, N_DISC, O_T0, RUNNING, SAFE_MOVING,
-                     SAFE_NO_UPLIFT, SAFE_REST)
+                     EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST, MODE_ROCK,
+                     M_IMPACTS, M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_UPLIFT,
+                     N_DISC, O_T0, RUNNING)
 from .rigid import (N_PAR as N_RIGID_PAR, P_ALPHA, P_G, P_P, P_THETA_OVER,
                     overturned, passed_alpha, theta_ddot, track_rotation)
 
@@ -145,15 +144,6 @@ def mark_uplift(t, theta, dtheta, pivot, met, log, cnt):
     if np.isnan(met[M_T_UPLIFT]):
         met[M_T_UPLIFT] = t
     log_event(log, cnt, t, EV_UPLIFT, dtheta, dtheta, theta, pivot)
-
-
-@jit
-def final_status(disc, met):
-    if np.isnan(met[M_T_UPLIFT]):
-        return SAFE_NO_UPLIFT
-    if disc[D_MODE] == MODE_REST:
-        return SAFE_REST
-    return SAFE_MOVING
 
 
 # ============================================================ (a) two springs
@@ -551,7 +541,7 @@ def ls_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     track_rotation(y[0], met)
     book_time(t, disc, met)
     if at_end:
-        return SAFE_NO_UPLIFT
+        return final_status(disc, met)
     return RUNNING
 
 

@@ -27,15 +27,14 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import (book_time, check_energy, init_metrics, integrate_hybrid,
-                     log_event, sweep_rows)
+from .hybrid import (book_time, check_energy, final_status, init_metrics,
+                     integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_IMPACT, EV_REST, EV_SLIP, EV_STICK, EV_UPLIFT, FLIGHT,
+                     MODE_REST, MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK,
                      M_IMPACTS, M_MAX_SLIDE, M_N_STICK_SLIP, M_RESIDUAL_SLIDE,
-                     M_T_LAST_IMPACT, M_T_UPLIFT, MODE_REST, MODE_ROCK,
-                     MODE_SLIDE, MODE_SLIDE_ROCK, N_DISC, O_EPS_OMEGA,
-                     O_EPS_T, O_T0, RUNNING, SAFE_MOVING, SAFE_NO_UPLIFT,
-                     SAFE_REST)
+                     M_T_LAST_IMPACT, M_T_UPLIFT, N_DISC, O_EPS_OMEGA, O_EPS_T,
+                     O_T0, RUNNING)
 from .rigid import (P_ALPHA, P_E, P_G, P_THETA_OVER, UPLIFT_RTOL, initial_pivot,
                     overturned, passed_alpha, track_rotation)
 
@@ -408,11 +407,7 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     if disc[D_MODE] != MODE_SLIDE:
         track_rotation(y[0], met)
     if at_end:
-        if disc[D_MODE] == MODE_REST:
-            if np.isnan(met[M_T_UPLIFT]):
-                return SAFE_NO_UPLIFT
-            return SAFE_REST
-        return SAFE_MOVING
+        return final_status(disc, met)
     return RUNNING
 
 

@@ -44,7 +44,8 @@ from .layout import (D_MODE, D_SLIP_DIR, MODE_REST, MODE_ROCK, MODE_SLIDE,
                      M_ENERGY_GAINS, M_T_FINAL, O_ATOL, O_DT_FIXED, O_MAX_STEP, O_MAX_STEPS,
                      FAIL_UNSTABLE, FAIL_INTERRUPTED, M_ERR_FIXED, M_DT_STABLE,
                      O_ABORT,
-                     O_RECORD_BREAKS, O_RTOL, O_T0, O_T_END, RUNNING)
+                     O_RECORD_BREAKS, O_RTOL, O_T0, O_T_END, RUNNING,
+                     SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
 
 MAX_BISECT = 200          # iteration cap of every bisection
 MAX_FALSI = 4 * MAX_BISECT   # regula falsi: at least MAX_BISECT halvings
@@ -93,6 +94,19 @@ def book_time(t, disc, met):
             if disc[D_SLIP_DIR] == 0:
                 met[M_T_UNLOADED] += dt
     met[M_T_PREV] = t
+
+
+@jit
+def final_status(disc, met):
+    """The status of a run that ends upright (the one rule of every model):
+    in full contact at rest, SAFE_NO_UPLIFT if it never lifted off, else
+    SAFE_REST; in any other contact mode SAFE_MOVING.  (A model that starts
+    lifted off books its uplift at t0, so 'never lifted off' implies rest.)"""
+    if disc[D_MODE] == MODE_REST:
+        if np.isnan(met[M_T_UPLIFT]):
+            return SAFE_NO_UPLIFT
+        return SAFE_REST
+    return SAFE_MOVING
 
 
 @jit

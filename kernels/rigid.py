@@ -17,17 +17,16 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
-                     sweep_rows)
+from .hybrid import (check_energy, final_status, init_metrics,
+                     integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_FLIGHT, EV_IMPACT,
                      EV_OVERTURN, EV_PASS_ALPHA, EV_REST, EV_UPLIFT, EXC_NONE,
-                     FLIGHT, M_IMPACTS, M_MAX_ABS_THETA, M_MAX_THETA_NEG,
-                     M_MAX_THETA_POS, M_T_EXC_END, M_T_FINAL, M_T_LAST_IMPACT,
-                     M_T_OVER, M_T_PASS_ALPHA, M_T_UPLIFT, MODE_REST,
-                     MODE_ROCK, N_DISC, N_HDR, O_EARLY_EXIT, O_EPS_OMEGA,
-                     O_EPS_T, O_T0, O_T_END, OVERTURN_MODE1, OVERTURN_MODE2,
-                     RUNNING, SAFE_BOUNDED, SAFE_MOVING, SAFE_NO_UPLIFT,
-                     SAFE_REST, X_KIND)
+                     FLIGHT, MODE_REST, MODE_ROCK, M_IMPACTS, M_MAX_ABS_THETA,
+                     M_MAX_THETA_NEG, M_MAX_THETA_POS, M_T_EXC_END, M_T_FINAL,
+                     M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA, M_T_UPLIFT,
+                     N_DISC, N_HDR, OVERTURN_MODE1, OVERTURN_MODE2,
+                     O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T, O_T0, O_T_END,
+                     RUNNING, SAFE_BOUNDED, X_KIND)
 
 P_ALPHA = 0
 P_P = 1
@@ -402,11 +401,7 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     t_end = opt[O_T_END]
     track_rotation(theta, met)
     if at_end:
-        if mode == MODE_REST:
-            if np.isnan(met[M_T_UPLIFT]):
-                return SAFE_NO_UPLIFT
-            return SAFE_REST
-        return SAFE_MOVING
+        return final_status(disc, met)
     if not early or mode != MODE_ROCK or t < met[M_T_EXC_END]:
         return RUNNING
     # free rocking from now on: the exact early decisions

@@ -61,14 +61,14 @@ import numpy as np
 
 from .config import jit, jit_generic, jit_parallel
 from .excitation import excitation_end, ground
-from .hybrid import check_energy, integrate_hybrid, log_event, sweep_rows
+from .hybrid import (check_energy, final_status, integrate_hybrid, log_event,
+                     sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_STATIC, D_WALL_REST, EV_FLIGHT,
                      EV_REST, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
-                     FLIGHT, LEANING, M_IMPACTS, M_T_LAST_IMPACT, M_T_UPLIFT,
-                     M_WALL_IMPACTS, MODE_REST, MODE_ROCK, MODE_WALL_REST,
-                     N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T, O_T0,
-                     RUNNING, SAFE_BOUNDED, SAFE_MOVING, SAFE_NO_UPLIFT,
-                     SAFE_REST)
+                     FLIGHT, LEANING, MODE_REST, MODE_ROCK, MODE_WALL_REST,
+                     M_IMPACTS, M_T_LAST_IMPACT, M_WALL_IMPACTS, N_DISC,
+                     O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T, O_T0, RUNNING,
+                     SAFE_BOUNDED, SAFE_REST)
 from .rigid import (K_FLIGHT, K_IMPACT, K_OVERTURN, P_ALPHA, P_E, P_E_W, P_G,
                     P_HOGAN, P_THETA_OVER, P_THETA_W, P_WALL_SIDE,
                     free_energy, ground_impact, init_state as rigid_init_state,
@@ -289,14 +289,11 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
             if par[P_THETA_W] > par[P_ALPHA]:
                 return LEANING
             return SAFE_REST
-        if mode == MODE_REST:
-            if np.isnan(met[M_T_UPLIFT]):
-                return SAFE_NO_UPLIFT
-            return SAFE_REST
-        if t >= excitation_end(hdr) and trapped_on_wall(y, par, disc):
+        if mode != MODE_REST and t >= excitation_end(hdr) and \
+                trapped_on_wall(y, par, disc):
             track_rotation(par[P_WALL_SIDE] * par[P_THETA_W], met)
             return LEANING
-        return SAFE_MOVING
+        return final_status(disc, met)
     if opt[O_EARLY_EXIT] != 0.0 and mode == MODE_ROCK and \
             t >= excitation_end(hdr):
         s = disc[D_PIVOT]
