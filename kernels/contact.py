@@ -756,12 +756,29 @@ def enter_flight(t, y, par, disc, met, log, cnt):
 
 # ---------------------------------------------------------------- mode pick
 @jit
+def stop_slip_impulsively(j, y, par):
+    """mu_k = inf: a contact that slips is stopped at once by a tangential
+    (plastic, sticking) impulse with its normal velocity kept 0; this only
+    dissipates.  j = 0 or 1 (one corner) or 2 (both base corners, flat)."""
+    vgx, vgy = cm_velocity(y, par)
+    post = np.empty(3)
+    if j == 2:
+        solve_contacts(y[0], vgx, vgy, y[1], 0.0, par, CS_STICK, CS_FREE,
+                       CS_OPEN, post)
+    else:
+        solve_contacts(y[0], vgx, vgy, y[1], 0.0, par,
+                       CS_STICK if j == 0 else CS_OPEN,
+                       CS_STICK if j == 1 else CS_OPEN, CS_OPEN, post)
+    set_cm_velocity(y, par, post[0], post[1], post[2])
+
+
+@jit
 def pick_flat(t, y, par, disc, hdr, smp, met, log, cnt):
     """Both base corners on the ground, theta = theta' = 0 (rest, end of a
     slide phase, flat landing, chatter): pick REST, ROCK, SLIDE_ROCK,
     SLIDE or FLIGHT by the mode solve (physics.md 4.2-4.3, 4.6)."""
     _g, _vn, v = point_kin(0, y, par)
-    if abs(v) <= V_TOL:
+    if abs(v) <= V_TOL or not np.isfinite(par[C_MU_K]):
         v = 0.0
     project_flat(y, v == 0.0)
     ag, av = ground(t, hdr, smp)
@@ -849,6 +866,10 @@ def pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, forbid_stick):
     FLIGHT by the mode solve."""
     project_single(j, y, par, False)
     _g, _vn, vt = point_kin(j, y, par)
+    if vt != 0.0 and not np.isfinite(par[C_MU_K]):
+        stop_slip_impulsively(j, y, par)
+        project_single(j, y, par, True)
+        vt = 0.0
     if abs(vt) <= V_TOL:
         y[3] -= vt
         vt = 0.0
@@ -1237,7 +1258,7 @@ def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
         track_rotation(y[0], met)
         return
     if y[0] == 0.0 and y[1] == 0.0:
-        project_flat(y, False)
+        project_flat(y, not np.isfinite(par[C_MU_K]))
         if y[3] != 0.0:
             st = slip_state(sign_of(y[3]))
             set_contacts(disc, st, st, CS_OPEN)
@@ -1249,6 +1270,10 @@ def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
     j = 1 if s > 0 else 0
     project_single(j, y, par, False)
     _g, _vn, vt = point_kin(j, y, par)
+    if vt != 0.0 and not np.isfinite(par[C_MU_K]):
+        stop_slip_impulsively(j, y, par)
+        project_single(j, y, par, True)
+        vt = 0.0
     if abs(vt) <= V_TOL:
         y[3] -= vt
         st = CS_STICK
