@@ -5,6 +5,7 @@ import math
 from dataclasses import dataclass, field
 
 from . import _validate as V
+from fastrock.kernels import layout as _L
 
 G_STANDARD = 9.80665
 
@@ -121,7 +122,7 @@ class RigidBlock:
         return None
 
 
-IMPACT_MAPS = {"full-contact": 0, "pivot-switch": 1}
+IMPACT_MAPS = {"full-contact": _L.IMPACT_FULL_CONTACT, "pivot-switch": _L.IMPACT_PIVOT_SWITCH}
 
 
 DEFAULT_BASE_MASS_RATIO = 0.1

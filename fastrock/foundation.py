@@ -58,12 +58,10 @@ __all__ = [
 #: Contact names of the history's ``contact`` column, by kernel mode.
 CONTACT_NAMES = {L.MODE_REST: "contact", L.MODE_ROCK: "rock", L.MODE_FLIGHT: "flight"}
 
-# Kernel parameter and discrete-state indices (kept here as plain ints, so that importing
-# this module does not import the foundation kernels; checked against them in the tests).
-_N_RIGID_PAR = 10
-P_MASS, P_I_G, P_B, P_H, P_KV, P_CV, P_KT, P_CT, P_EF, P_THETA_Y, P_I_C, P_I_0 = (
-    _N_RIGID_PAR + i for i in range(12))
-N_PAR = _N_RIGID_PAR + 14
+# the kernels' parameter layout (kernels/layout.py imports no kernel); discrete-state slots of
+# the two-spring model (kept here as plain ints, checked against the kernel in the tests)
+from fastrock.kernels.layout import (N_PAR_FOUNDATION as N_PAR, P_B, P_CT, P_CV, P_EF,  # noqa: E402,F401
+                                     P_H, P_I_0, P_I_C, P_I_G, P_KT, P_KV, P_MASS, P_THETA_Y)
 D_RIGHT = 6
 D_LEFT = 7
 

@@ -5,9 +5,11 @@ import math
 from dataclasses import dataclass
 
 from . import _validate as V
+from fastrock.kernels import layout as _L
 
 DEFAULT_SLIDE_TOLERANCE = 1e-3   # m
-LIFT_OFF = {"stop": 0, "hold": 1}
+
+LIFT_OFF = {"stop": _L.LIFT_OFF_STOP, "hold": _L.LIFT_OFF_HOLD}
 
 
 @dataclass(frozen=True)

@@ -14,8 +14,8 @@ from .registry import KernelSpec  # noqa: F401  (re-exported)
 
 
 def rigid_par(body: RigidBlock):
-    from fastrock.kernels import rigid as K
-    par = np.zeros(K.N_PAR)
+    from fastrock.kernels import layout as K
+    par = np.zeros(K.N_PAR_RIGID)
     par[K.P_ALPHA] = body.alpha
     par[K.P_P] = body.p
     par[K.P_E] = body.e
@@ -25,8 +25,8 @@ def rigid_par(body: RigidBlock):
 
 
 def flexible_par(body: FlexibleBody, sliding=False, n_par=None):
-    from fastrock.kernels import flexible as K
-    par = np.zeros(n_par or K.N_PAR)
+    from fastrock.kernels import layout as K
+    par = np.zeros(n_par or K.N_PAR_FLEXIBLE)
     par[K.F_ALPHA] = body.alpha
     par[K.F_P] = body.p
     par[K.F_E] = body.e
@@ -46,26 +46,26 @@ def flexible_par(body: FlexibleBody, sliding=False, n_par=None):
 
 
 def flexible_friction_par(body: FlexibleBody, friction):
-    from fastrock.kernels import flexible_friction as K
+    from fastrock.kernels import layout as K
     if body.impact != "full-contact":
         raise ValueError("friction= with a FlexibleBody needs impact='full-contact' (the slide-rock impact "
                          "rule of physics.md 4.4)")
     if body.base_mass(sliding=True) <= 0.0:
         raise ValueError("base_mass_ratio must be > 0 with sliding on: with a massless base the sliding "
                          "problem is a differential-algebraic system (physics.md 4.4); use e.g. 0.1")
-    par = flexible_par(body, sliding=True, n_par=K.N_PAR)
-    par[K.Q_MU_S] = friction.mu_s
-    par[K.Q_MU_K] = friction.mu_k
-    par[K.Q_LIFT_OFF] = LIFT_OFF[friction.lift_off]
+    par = flexible_par(body, sliding=True, n_par=K.N_PAR_FLEXIBLE_FRICTION)
+    par[K.F_MU_S] = friction.mu_s
+    par[K.F_MU_K] = friction.mu_k
+    par[K.F_LIFT_OFF] = LIFT_OFF[friction.lift_off]
     return par
 
 
 def rigid_friction_par(body: RigidBlock, friction):
-    from fastrock.kernels import friction as K
+    from fastrock.kernels import layout as K
     if friction.lift_off != "stop":
         raise ValueError("lift_off='hold' is available for FlexibleBody only; a rigid block with friction "
                          "stops with outcome 'flight' when N reaches 0")
-    par = np.zeros(K.N_PAR)
+    par = np.zeros(K.N_PAR_FRICTION)
     par[: len(rigid_par(body))] = rigid_par(body)
     if body.b is not None and body.h is not None:
         b, h = body.b, body.h

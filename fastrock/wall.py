@@ -121,7 +121,7 @@ class Wall:
 
     def fill_par(self, par, body):
         """Write the wall entries of the rigid kernel's parameter vector."""
-        from fastrock.kernels import rigid as K
+        from fastrock.kernels import layout as K
         par[K.P_WALL_SIDE] = float(self.side)
         par[K.P_THETA_W] = self.limit_angle(body)
         par[K.P_E_W] = self.restitution

@@ -27,24 +27,11 @@ from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
                      N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0, RUNNING)
 from .rigid import initial_pivot, overturned, passed_alpha, track_rotation
 
-F_ALPHA = 0
-F_P = 1
-F_E = 2          # restitution factor on theta'+ (I1 map only)
-F_G = 3
-F_THETA_OVER = 4
-F_B = 5          # m, base half-width
-F_H = 6          # m, mass height
-F_WN = 7         # rad/s, omega_n = sqrt(K/m)
-F_ZETA = 8
-F_IM = 9         # m^2, I_m / m
-F_IMPACT = 10    # 0: full contact after impact (I3), 1: pivot switch (I1)
-F_MB = 11        # m_b / m, rigid base mass (0: the classic massless base)
-F_IB = 12        # m^2, I_b / m, base inertia about its own CM
-F_HB = 13        # m, base CM height h_b
-N_PAR = 14
+from .layout import (F_ALPHA, F_B, F_E, F_G, F_H, F_HB, F_IB, F_IM,  # noqa: E402,F401
+                     F_IMPACT, F_MB, F_P, F_THETA_OVER, F_WN, F_ZETA,
+                     IMPACT_FULL_CONTACT, IMPACT_PIVOT_SWITCH,
+                     N_PAR_FLEXIBLE as N_PAR)
 
-IMPACT_FULL_CONTACT = 0
-IMPACT_PIVOT_SWITCH = 1
 N_EVENTS = 7
 # event ids in full contact
 C_UPLIFT = 0        # signed uplift test of 3.3, either corner (terminal)

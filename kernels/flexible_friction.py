@@ -51,14 +51,8 @@ from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      RUNNING)
 from .rigid import UPLIFT_RTOL, overturned, passed_alpha, track_rotation
 
-Q_MU_S = 14
-Q_MU_K = 15
-Q_LIFT_OFF = 16     # 0: stop with FLIGHT when N reaches 0 while rocking,
-                    # 1: hold the pivot down (bilateral, as the classic
-                    #    models do) with no friction while N < 0
-N_PAR = 18
-LIFT_OFF_STOP = 0
-LIFT_OFF_HOLD = 1
+from .layout import (F_LIFT_OFF, F_MU_K, F_MU_S, LIFT_OFF_HOLD,  # noqa: E402,F401
+                     LIFT_OFF_STOP, N_PAR_FLEXIBLE_FRICTION as N_PAR)
 N_EVENTS = 8
 # event ids in full contact (REST, SLIDE)
 C_UPLIFT = 0        # REST: uplift test of 3.3, either corner; SLIDE: a corner lifts while slipping
@@ -132,7 +126,7 @@ def slip_rock(t, y, s, sigma, par, hdr, smp):
     toward sigma with F = -mu_k sigma N (Cramer's rule on the 3x3)."""
     ag, G, c, sn, Xc, Yc, fu, ft, m22, n0, fd = rows(t, y, s, par, hdr, smp)
     H = par[F_H]
-    k = par[Q_MU_K] * sigma
+    k = par[F_MU_K] * sigma
     a31 = c - k * sn
     a32 = Yc - k * Xc
     a33 = 1.0 + par[F_MB]
@@ -164,7 +158,7 @@ def contact_slip(t, y, sigma, par, hdr, smp):
     mb = par[F_MB]
     fe = elastic(y, par)
     N = (1.0 + mb) * (par[F_G] + av)
-    dd = (-par[Q_MU_K] * sigma * N - fe) / mb - ag
+    dd = (-par[F_MU_K] * sigma * N - fe) / mb - ag
     return fe - ag - dd, dd, N
 
 
@@ -233,8 +227,8 @@ def event(k, t, y, par, disc, hdr, smp):
                 F = fe + mb * ag
                 udd = fe - ag
                 dF = -wn * wn * y[1] - 2.0 * par[F_ZETA] * wn * udd + mb * dag
-                g = par[Q_MU_S] * (1.0 + mb) * (par[F_G] + av) - abs(F)
-                gd = par[Q_MU_S] * (1.0 + mb) * dav - (dF if F >= 0.0 else -dF)
+                g = par[F_MU_S] * (1.0 + mb) * (par[F_G] + av) - abs(F)
+                gd = par[F_MU_S] * (1.0 + mb) * dav - (dF if F >= 0.0 else -dF)
                 return g, gd, True
             return np.inf, 0.0, False
         if k == C_UPLIFT:
@@ -253,7 +247,7 @@ def event(k, t, y, par, disc, hdr, smp):
         udd, tdd, F, N = stick_rock(t, y, s, par, hdr, smp)
         if k == R_SLIP_STICK:
             # no rate: F and N depend on a_g and the accelerations
-            return par[Q_MU_S] * N - abs(F), 0.0, True
+            return par[F_MU_S] * N - abs(F), 0.0, True
     else:
         udd, tdd, dd, N = slip_rock(t, y, s, sig, par, hdr, smp)
         if k == R_SLIP_STICK:
@@ -296,7 +290,7 @@ def lift(t, y, s, met, log, cnt):
 def lift_off(t, y, s, par, disc, met, log, cnt):
     """N reached 0 while rocking: stop (FLIGHT) or hold the pivot down and
     let the base slip without friction until N > 0 again (sigma = 0)."""
-    if par[Q_LIFT_OFF] != LIFT_OFF_HOLD:
+    if par[F_LIFT_OFF] != LIFT_OFF_HOLD:
         log_event(log, cnt, t, EV_FLIGHT, y[3], y[3], y[2], s)
         return FLIGHT
     log_event(log, cnt, t, EV_LIFT_OFF_HELD, y[3], y[3], y[2], s)
@@ -357,7 +351,7 @@ def start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt):
         return FLIGHT
     y[2] = 0.0
     y[3] = 0.0
-    mu_s = par[Q_MU_S]
+    mu_s = par[F_MU_S]
     if y[5] != 0.0:
         sigma = 1 if y[5] > 0.0 else -1
         _u, tp, _d, Np = slip_rock(t, y, 1, sigma, par, hdr, smp)
@@ -389,7 +383,7 @@ def uplift_from_rest(t, y, s, par, disc, hdr, smp, met, log, cnt):
     """The uplift test of 3.3 is met on corner s: rock if stick holds,
     else slip (and slide-rock if that lifts the corner)."""
     _u, _t, F, N = stick_rock(t, y, s, par, hdr, smp)
-    if abs(F) <= par[Q_MU_S] * N:
+    if abs(F) <= par[F_MU_S] * N:
         set_mode(disc, MODE_ROCK, s, 0)
         lift(t, y, s, met, log, cnt)
         return RUNNING
@@ -409,7 +403,7 @@ def stick(t, y, par, disc, hdr, smp, met, log, cnt):
         return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
     _u, _t, F, N = stick_rock(t, y, s, par, hdr, smp)
     log_event(log, cnt, t, EV_STICK, y[3], y[3], y[2], s)
-    if abs(F) <= par[Q_MU_S] * N:
+    if abs(F) <= par[F_MU_S] * N:
         set_mode(disc, MODE_ROCK, s, 0)
         return RUNNING
     if t == met[M_T_SLIP_START]:
@@ -428,7 +422,7 @@ def reload(t, y, par, disc, hdr, smp, met, log, cnt):
         set_mode(disc, MODE_SLIDE_ROCK, s, 1 if y[5] > 0.0 else -1)
         return RUNNING
     _u, _t, F, N = stick_rock(t, y, s, par, hdr, smp)
-    if abs(F) <= par[Q_MU_S] * N:
+    if abs(F) <= par[F_MU_S] * N:
         set_mode(disc, MODE_ROCK, s, 0)
         return RUNNING
     # the unloaded slip solve has N > 0 here: no second lift-off at once
@@ -540,7 +534,7 @@ def settled_for_good(t, y, par, hdr):
     if not never_uplifts_again(t, y, par, hdr):
         return False
     _U, fmax = free_column_bound(y, par)
-    return fmax < par[Q_MU_S] * (1.0 + par[F_MB]) * par[F_G]
+    return fmax < par[F_MU_S] * (1.0 + par[F_MB]) * par[F_G]
 
 
 @jit

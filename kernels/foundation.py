@@ -65,23 +65,12 @@ from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
                      EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST, MODE_ROCK,
                      M_IMPACTS, M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_UPLIFT,
                      N_DISC, O_T0, RUNNING)
-from .rigid import (N_PAR as N_RIGID_PAR, P_ALPHA, P_G, P_P, P_THETA_OVER,
+from .rigid import (P_ALPHA, P_G, P_P, P_THETA_OVER,
                     overturned, passed_alpha, theta_ddot, track_rotation)
 
-# ---- parameter layout (rigid entries 0..N_RIGID_PAR-1 first) ---------------
-P_MASS = N_RIGID_PAR + 0    # kg
-P_I_G = N_RIGID_PAR + 1     # kg m^2, centroidal inertia
-P_B = N_RIGID_PAR + 2       # m, half-width (corner at x = +-b)
-P_H = N_RIGID_PAR + 3       # m, height of the centre of mass above the base
-P_KV = N_RIGID_PAR + 4      # N/m, corner spring (two_spring)
-P_CV = N_RIGID_PAR + 5      # N s/m, corner dashpot (two_spring)
-P_KT = N_RIGID_PAR + 6      # N m/rad, rotational spring (switching, linear)
-P_CT = N_RIGID_PAR + 7      # N m s/rad, rotational dashpot
-P_EF = N_RIGID_PAR + 8      # -, restitution at re-contact (switching)
-P_THETA_Y = N_RIGID_PAR + 9  # rad, M g b / k_t (switching)
-P_I_C = N_RIGID_PAR + 10    # kg m^2, I_G + M h^2 (inertia about the base centre)
-P_I_0 = N_RIGID_PAR + 11    # kg m^2, I_G + M R^2 (inertia about a corner)
-N_PAR = N_RIGID_PAR + 14
+from .layout import (N_PAR_FOUNDATION as N_PAR, P_B, P_CT, P_CV,  # noqa: E402,F401
+                     P_EF, P_H, P_I_0, P_I_C, P_I_G, P_KT, P_KV, P_MASS,
+                     P_THETA_Y)
 
 # ---- discrete state (model-specific use of the free slots) -----------------
 D_SIDE = 5       # sign of the rotation for the zero-crossing event (0: none yet)

@@ -38,12 +38,7 @@ from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
 from .rigid import (P_ALPHA, P_E, P_G, P_THETA_OVER, UPLIFT_RTOL, initial_pivot,
                     overturned, passed_alpha, track_rotation)
 
-Q_B = 10        # m, half-width
-Q_H = 11        # m, half-height (CM height above the base)
-Q_IG = 12       # m^2, I_G / M
-Q_MU_S = 13
-Q_MU_K = 14
-N_PAR = 16
+from .layout import N_PAR_FRICTION as N_PAR, Q_B, Q_H, Q_IG, Q_MU_K, Q_MU_S  # noqa: E402,F401
 N_EVENTS = 6
 # event ids (the same number keeps one meaning in every mode that has it)
 E_IMPACT = 0        # ROCK/SLIDE_ROCK: s theta reaches 0

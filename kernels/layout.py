@@ -1,7 +1,9 @@
 """Integer codes and array layouts shared by all kernels and the front end.
 
 Everything a kernel exchanges with the front end is a flat array whose
-entries are addressed by the constants below.
+entries are addressed by the constants below, the parameter vector of every
+model included.  This module imports nothing (no Numba): the front end
+builds kernel inputs without importing a kernel module.
 """
 
 # ---- run status (returned by every entry kernel) ---------------------------
@@ -139,3 +141,71 @@ EXC_HALF_SINE = 2
 EXC_ONE_COSINE = 3
 EXC_SAMPLED = 4
 EXC_RECTANGULAR = 5
+
+# ---- parameter vectors (float64), one layout per model ---------------------
+# Every model starts with the rigid entries: the shared kernel pieces
+# (rigid.overturned, passed_alpha, ...) read alpha, p, e, g, theta_over there.
+P_ALPHA = 0
+P_P = 1
+P_E = 2
+P_G = 3
+P_THETA_OVER = 4
+# rear wall (kernels.wall)
+P_WALL_SIDE = 5     # w = +1 / -1
+P_THETA_W = 6       # rad, limit angle
+P_E_W = 7           # wall restitution
+P_HOGAN = 8         # 1: gap d = 0, Hogan's one-sided map
+N_PAR_RIGID = 10
+
+# rigid block with friction (kernels.friction), after the rigid entries
+Q_B = 10            # m, half-width
+Q_H = 11            # m, half-height (CM height above the base)
+Q_IG = 12           # m^2, I_G / M
+Q_MU_S = 13
+Q_MU_K = 14
+N_PAR_FRICTION = 16
+
+# flexible body (kernels.flexible); the first five entries are the rigid ones
+F_ALPHA = 0
+F_P = 1
+F_E = 2             # restitution factor on theta'+ (I1 map only)
+F_G = 3
+F_THETA_OVER = 4
+F_B = 5             # m, base half-width
+F_H = 6             # m, mass height
+F_WN = 7            # rad/s, omega_n = sqrt(K/m)
+F_ZETA = 8
+F_IM = 9            # m^2, I_m / m
+F_IMPACT = 10       # IMPACT_FULL_CONTACT (I3) or IMPACT_PIVOT_SWITCH (I1)
+F_MB = 11           # m_b / m, rigid base mass (0: the classic massless base)
+F_IB = 12           # m^2, I_b / m, base inertia about its own CM
+F_HB = 13           # m, base CM height h_b
+N_PAR_FLEXIBLE = 14
+IMPACT_FULL_CONTACT = 0
+IMPACT_PIVOT_SWITCH = 1
+
+# flexible body with friction (kernels.flexible_friction), after the flexible entries
+F_MU_S = 14
+F_MU_K = 15
+F_LIFT_OFF = 16     # LIFT_OFF_STOP: stop with FLIGHT when N reaches 0 while
+#                     rocking; LIFT_OFF_HOLD: hold the pivot down (bilateral,
+#                     as the classic models do) with no friction while N < 0
+N_PAR_FLEXIBLE_FRICTION = 18
+LIFT_OFF_STOP = 0
+LIFT_OFF_HOLD = 1
+
+# block on a flexible foundation (kernels.foundation), after the rigid entries;
+# SI units (kg, m, N/m, N s/m, N m/rad, N m s/rad)
+P_MASS = 10         # kg
+P_I_G = 11          # kg m^2, centroidal inertia
+P_B = 12            # m, half-width (corner at x = +-b)
+P_H = 13            # m, height of the centre of mass above the base
+P_KV = 14           # N/m, corner spring (two_spring)
+P_CV = 15           # N s/m, corner dashpot (two_spring)
+P_KT = 16           # N m/rad, rotational spring (switching, linear)
+P_CT = 17           # N m s/rad, rotational dashpot
+P_EF = 18           # -, restitution at re-contact (switching)
+P_THETA_Y = 19      # rad, M g b / k_t (switching)
+P_I_C = 20          # kg m^2, I_G + M h^2 (inertia about the base centre)
+P_I_0 = 21          # kg m^2, I_G + M R^2 (inertia about a corner)
+N_PAR_FOUNDATION = 24

@@ -28,17 +28,8 @@ from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_FLIGHT, EV_IMPACT,
                      O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T, O_T0, O_T_END,
                      RUNNING, SAFE_BOUNDED, X_KIND)
 
-P_ALPHA = 0
-P_P = 1
-P_E = 2
-P_G = 3
-P_THETA_OVER = 4
-# one-sided rocking (wall), used by kernels.wall
-P_WALL_SIDE = 5     # w = +1 / -1
-P_THETA_W = 6       # rad, limit angle
-P_E_W = 7           # wall restitution
-P_HOGAN = 8         # 1: gap d = 0, Hogan's one-sided map
-N_PAR = 10
+from .layout import (N_PAR_RIGID as N_PAR, P_ALPHA, P_E, P_E_W, P_G,  # noqa: E402,F401
+                     P_HOGAN, P_P, P_THETA_OVER, P_THETA_W, P_WALL_SIDE)
 
 # An exceedance of the uplift threshold G tan(alpha) smaller than this
 # (relative) counts as touching it: a record whose peak sits one ulp above
