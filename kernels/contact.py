@@ -305,6 +305,13 @@ def contact_mu(k, par, kinetic):
 
 @jit
 def solve_contacts(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, out):
+    """``solve_targets`` with every target 0."""
+    return solve_targets(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, 0.0,
+                         out)
+
+
+@jit
+def solve_targets(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
     """The generic mode solve of physics.md 4.2 (and its impulse form).
 
     Contact k is in state st_k (CS_*).  With ``b0`` the generalized
@@ -315,7 +322,9 @@ def solve_contacts(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, out):
     those velocities zero.  ``out`` receives b0 + M^-1 Q (x_G'', y_G'',
     theta'' or the post-impact velocities).  Returns (ok, N0, F0, N1, F1,
     N2, F2); ok is False for a singular system (e.g. both base corners
-    sticking: REST is a static phase, never solved here).
+    sticking: REST is a static phase, never solved here).  ``tgt2`` is the
+    target of the wall contact's normal row (impulse form: the post-impact
+    normal velocity -e_w v_n-).
     """
     iG = par[C_IG]
     c = math.cos(theta)
@@ -348,6 +357,8 @@ def solve_contacts(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, out):
         ws[n, 5] = jn2 + m * jt2
         ws[n, 12] = om2 * (nx * rx + ny * ry) - (nx * b0x + ny * b0y
                                                   + jn2 * b0w)
+        if k == 2:
+            ws[n, 12] += tgt2
         ws[n, 13] = k
         ws[n, 14] = 0.0
         ws[n, 15] = m
@@ -540,6 +551,13 @@ def event(k, t, y, par, disc, hdr, smp):
             return vy, -(par[P_G] + av), False
         return np.inf, 0.0, True
     if mode == MODE_SLIDE:
+        if k == K_WALL:
+            if not wall_active(par):
+                return np.inf, 0.0, True
+            gap, vn, _vt = point_kin(2, y, par)
+            if vn < 0.0:
+                return gap, vn, True
+            return np.inf, 0.0, True
         if k == K_STICK or k == K_LIFT:
             acc = np.empty(3)
             _ok, N0, _F0, N1, _F1, _N2, _F2 = mode_solve(
@@ -565,7 +583,7 @@ def event(k, t, y, par, disc, hdr, smp):
     if k == K_STICK and mode != MODE_SLIDE_ROCK:
         return np.inf, 0.0, True
     if k == K_WALL:
-        if not wall_active(par) or s != par[P_WALL_SIDE]:
+        if not wall_active(par):
             return np.inf, 0.0, True
         gap, vn, _vt = point_kin(2, y, par)
         if vn < 0.0:
@@ -1123,26 +1141,53 @@ def wall_rest_margin(t, y, par, hdr, smp):
 
 @jit
 def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
-    """The wall corner reached the wall while rocking on the near corner:
-    frictionless wall, sticking pivot: theta'+ = -e_w theta'- about the
-    pivot (as kernels/wall.py)."""
+    """The wall corner reached the (frictionless) wall: impulse solve with
+    the wall's post-impact normal velocity -e_w v_n- and, while rocking, the
+    pivot held (ROCK: its velocity 0, which gives theta'+ = -e_w theta'-
+    about the pivot as kernels/wall.py) or frictionless during the impact
+    (SLIDE_ROCK: its normal velocity 0); in flight the wall alone.  Flat
+    sliding into the wall is a face impact: x'+ = -e_w x'-, no rotation."""
+    mode = disc[D_MODE]
     s = disc[D_PIVOT]
     j = 1 if s > 0 else 0
-    pre = y[1]
-    post = -par[P_E_W] * pre
     before = kinetic_energy(y, par)
-    rx, ry = point_offset(j, y[0], par)
-    _g, _vn, vt = point_kin(j, y, par)
-    # pivot velocity kept (vt, 0); v_G = v_c - theta' (ry, -rx)
-    set_cm_velocity(y, par, vt - post * ry, post * rx, post)
-    check_energy(before, kinetic_energy(y, par), met)
+    pre = y[1]
+    _gap, vn2, _vt2 = point_kin(2, y, par)
+    e_w = par[P_E_W]
     met[M_WALL_IMPACTS] += 1
-    track_rotation(y[0], met)
-    log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, y[0], s)
-    chatter = abs(post) < opt[O_EPS_OMEGA] or \
-        t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
+    chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
     met[M_T_LAST_IMPACT] = t
-    if chatter and vt == 0.0:
+    if mode == MODE_SLIDE:
+        y[3] = -e_w * y[3]
+        log_event(log, cnt, t, EV_WALL_IMPACT, pre, y[1], y[0], s)
+        check_energy(before, kinetic_energy(y, par), met)
+        return pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+    vgx, vgy = cm_velocity(y, par)
+    post = np.empty(3)
+    tgt = -e_w * vn2
+    if mode == MODE_FLIGHT:
+        solve_targets(y[0], vgx, vgy, y[1], 0.0, par, CS_OPEN, CS_OPEN,
+                      CS_FREE, tgt, post)
+    else:
+        stp = CS_STICK if mode == MODE_ROCK else CS_FREE
+        ok, N0, _F0, N1, _F1, _N2, _F2 = solve_targets(
+            y[0], vgx, vgy, y[1], 0.0, par, stp if j == 0 else CS_OPEN,
+            stp if j == 1 else CS_OPEN, CS_FREE, tgt, post)
+        N = N1 if j == 1 else N0
+        if not ok or (N < 0.0 and (mode != MODE_ROCK
+                                   or np.isfinite(par[C_MU_S]))):
+            # the pivot would be pulled (held only with mu = inf, as the
+            # single-DOF map of kernels/wall.py): the wall impulse alone
+            solve_targets(y[0], vgx, vgy, y[1], 0.0, par, CS_OPEN, CS_OPEN,
+                          CS_FREE, tgt, post)
+    set_cm_velocity(y, par, post[0], post[1], post[2])
+    check_energy(before, kinetic_energy(y, par), met)
+    track_rotation(y[0], met)
+    log_event(log, cnt, t, EV_WALL_IMPACT, pre, y[1], y[0], s)
+    if mode == MODE_FLIGHT:
+        return RUNNING
+    _g, _vn, vt = point_kin(j, y, par)
+    if (abs(y[1]) < opt[O_EPS_OMEGA] or chatter) and abs(vt) <= V_TOL:
         y[1] = 0.0
         project_single(j, y, par, True)
         if wall_rest_margin(t, y, par, hdr, smp) >= 0.0:
@@ -1152,6 +1197,29 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
             log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
             return RUNNING
     return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
+@jit
+def trapped_on_wall(t, y, par, disc, hdr):
+    """After the excitation: pivoting on the corner near the wall past that
+    side's instability with mechanical energy below the barrier g (R - h)
+    (R: corner-to-CM distance), so that the block can never come back
+    (impacts and friction never add energy): LEANING."""
+    if not wall_active(par) or t < excitation_end(hdr):
+        return False
+    w = par[P_WALL_SIDE]
+    mode = disc[D_MODE]
+    if mode != MODE_ROCK and mode != MODE_SLIDE_ROCK:
+        return False
+    if disc[D_PIVOT] != w:
+        return False
+    j = 1 if w > 0.0 else 0
+    cx, cy = body_point(j, par)
+    if not w * y[0] > math.atan2(abs(cx), abs(cy)):
+        return False
+    hm = hmid(par)
+    E = kinetic_energy(y, par) + par[P_G] * (y[4] + hm * math.cos(y[0]) - hm)
+    return E < par[P_G] * (math.hypot(cx, cy) - hm)
 
 
 # ---------------------------------------------------------------- transition
@@ -1231,6 +1299,8 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
             if abs(y[0]) > par[P_ALPHA]:
                 return LEANING
             return SAFE_REST
+        if trapped_on_wall(t, y, par, disc, hdr):
+            return LEANING
         return SAFE_MOVING
     return RUNNING
 

@@ -308,3 +308,40 @@ def test_slide_rock_vs_solve_ivp(theta0, omega0, v0, mu_s, mu_k):
         dk = yk[2] + s * b * math.cos(yk[0]) - s * b - d0
         assert dk == pytest.approx(d, abs=1e-6)
         assert yk[0] == pytest.approx(th, abs=1e-6)
+
+
+# ------------------------------------------------------------------ stage 2: wall
+WALL_GRID = [(gap, e_w, a, f, sg) for gap, e_w in ((0.05, 1.0), (0.1, 1.0), (0.5, 1.0),
+                                                   (0.1, 0.6), (0.5, 0.6))
+             for a, f in ((0.25, 1.0), (0.35, 1.0), (0.8, 2.0)) for sg in (1, -1)]
+WALL_GRID += [(0.6, 0.6, 0.26, 1.0, -1), (0.6, 0.6, 0.5, 2.0, -1), (0.6, 1.0, 0.5, 2.0, -1),
+              (0.45, 0.6, 0.46, 2.0, -1)]
+
+
+@pytest.mark.slow
+def test_frictionless_wall_mu_inf_reproduces_wall_kernel():
+    from fastrock import Wall
+    seen = set()
+    for gap, e_w, amp, f, sg in WALL_GRID:
+        pulse = Pulse(amp, f, sign=sg)
+        ref = simulate(BODY, pulse, wall=Wall(gap=gap, side=-1, restitution=e_w), duration=11.0)
+        r = run(cpar(BODY, gap=gap, side=-1, e_w=e_w), pulse=pulse)
+        key = (gap, e_w, amp, f, sg)
+        assert r["status"] == ref.status_code, key
+        seen.add(ref.outcome)
+        assert r["met"][L.M_MAX_ABS_THETA] == pytest.approx(ref.metrics["max_rotation"], rel=1e-6), key
+        assert r["met"][L.M_WALL_IMPACTS] == ref.metrics["wall_impacts"], key
+    assert {"safe", "mode1", "leaning"} <= seen, seen
+
+
+@pytest.mark.parametrize("side", [1, -1])
+def test_far_wall_equals_no_wall(side):
+    for gap in (2.0 * BODY.h, 3.0 * BODY.h):
+        for amp, sg in ((0.25, 1), (0.35, -1), (0.6, 1)):
+            pulse = Pulse(amp, 1.0, sign=sg)
+            r0 = run(cpar(BODY), pulse=pulse)
+            r = run(cpar(BODY, gap=gap, side=side), pulse=pulse)
+            assert r["status"] == r0["status"]
+            assert r["met"][L.M_WALL_IMPACTS] == 0
+            assert r["met"][L.M_MAX_ABS_THETA] == pytest.approx(r0["met"][L.M_MAX_ABS_THETA],
+                                                                rel=1e-12)
