@@ -16,7 +16,11 @@ states its own:
 1. The kernel module never imports the front end, pandas or matplotlib.  It
    supplies the five jitted functions of ``kernels/hybrid.py`` (``rhs``,
    ``event``, ``transition``, ``static_margin``, ``after_step``) and drives
-   them through ``hybrid.integrate_hybrid``.
+   them through ``hybrid.integrate_hybrid``, after an ``init_state(t0, y,
+   par, disc, hdr, smp, met, log, cnt)`` that sets the metrics
+   (``hybrid.init_metrics``) and the initial contact mode.  Time is booked
+   with ``hybrid.book_time`` and a run that ends upright gets
+   ``hybrid.final_status``; event ids are named module constants.
 2. It defines two entry kernels named ``<name>_simulate`` and
    ``<name>_sweep`` (``Model.simulate_entry`` / ``sweep_entry``), with the
    signatures of ``kernels.rigid.rigid_simulate`` /

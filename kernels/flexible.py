@@ -305,7 +305,7 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
 
 
 @jit
-def init_state(t0, y, par, disc, met):
+def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
     init_metrics(t0, met)
     for i in range(N_DISC):
         disc[i] = 0
@@ -324,7 +324,7 @@ def init_state(t0, y, par, disc, met):
 def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
         cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
-    init_state(opt[O_T0], y, par, disc, met)
+    init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
     return integrate_hybrid(rhs, event, transition, static_margin,
                             after_step, N_EVENTS, y, par, disc, hdr, smp,
                             opt, t_eval, met, hist_t, hist_y, hist_d, log,

@@ -317,7 +317,7 @@ def ts_initial_contact(y, side, par):
 
 
 @jit
-def ts_init(t0, y, par, disc, met):
+def ts_init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
     """Corner states from the initial y: a corner is in contact iff
     delta >= 0 and k_v delta + c_v delta' > 0."""
     init_metrics(t0, met)
@@ -337,7 +337,7 @@ def ts_init(t0, y, par, disc, met):
 def two_spring_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                    hist_d, log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
-    ts_init(opt[O_T0], y, par, disc, met)
+    ts_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
     return integrate_hybrid(ts_rhs, ts_event, ts_transition, never_static,
                             ts_after_step, TS_N_EVENTS, y, par, disc, hdr,
                             smp, opt, t_eval, met, hist_t, hist_y, hist_d,
@@ -456,7 +456,7 @@ def sw_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
 
 
 @jit
-def sw_init(t0, y, par, disc, hdr, smp, met):
+def sw_init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
     """Rocking from the start iff the uplift test holds at the initial state."""
     init_metrics(t0, met)
     for i in range(N_DISC):
@@ -478,7 +478,7 @@ def sw_init(t0, y, par, disc, hdr, smp, met):
 def switching_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
                   log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
-    sw_init(opt[O_T0], y, par, disc, hdr, smp, met)
+    sw_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
     return integrate_hybrid(sw_rhs, sw_event, sw_transition, never_static,
                             sw_after_step, SW_N_EVENTS, y, par, disc, hdr,
                             smp, opt, t_eval, met, hist_t, hist_y, hist_d,
@@ -535,13 +535,18 @@ def ls_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
 
 
 @jit
-def linear_sdof_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
-                    hist_d, log, cnt):
-    disc = np.zeros(N_DISC, dtype=np.int64)
-    init_metrics(opt[O_T0], met)
+def ls_init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
+    init_metrics(t0, met)
     disc[D_MODE] = MODE_REST
     init_side(y[0], y[1], disc)
     track_rotation(y[0], met)
+
+
+@jit
+def linear_sdof_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                    hist_d, log, cnt):
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    ls_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
     return integrate_hybrid(ls_rhs, ls_event, ls_transition, never_static,
                             ls_after_step, LS_N_EVENTS, y, par, disc, hdr,
                             smp, opt, t_eval, met, hist_t, hist_y, hist_d,

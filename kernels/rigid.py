@@ -413,7 +413,7 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
 
 
 @jit
-def init_state(t0, y, par, disc, hdr, smp, met):
+def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
     """Initial discrete state from (theta0, theta'0)."""
     init_metrics(t0, met)
     for i in range(N_DISC):
@@ -434,7 +434,7 @@ def init_state(t0, y, par, disc, hdr, smp, met):
 def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
         cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
-    init_state(opt[O_T0], y, par, disc, hdr, smp, met)
+    init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
     status = integrate_hybrid(rhs, event, transition, static_margin,
                               after_step, N_EVENTS, y, par, disc, hdr, smp,
                               opt, t_eval, met, hist_t, hist_y, hist_d, log,

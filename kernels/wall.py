@@ -309,10 +309,10 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
 
 
 @jit
-def init_state(t0, y, par, disc, hdr, smp, met):
+def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
     """As :func:`.rigid.init_state`; with d = 0 the pivot is the far corner
     (a start at theta = 0 moving toward the wall impacts at once)."""
-    rigid_init_state(t0, y, par, disc, hdr, smp, met)
+    rigid_init_state(t0, y, par, disc, hdr, smp, met, log, cnt)
     w = par[P_WALL_SIDE]
     if par[P_HOGAN] != 0.0 and disc[D_MODE] == MODE_ROCK and \
             disc[D_PIVOT] == w:
@@ -323,7 +323,7 @@ def init_state(t0, y, par, disc, hdr, smp, met):
 def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
         cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
-    init_state(opt[O_T0], y, par, disc, hdr, smp, met)
+    init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
     return integrate_hybrid(rhs, event, transition, static_margin,
                             after_step, N_EVENTS, y, par, disc, hdr, smp,
                             opt, t_eval, met, hist_t, hist_y, hist_d, log,
