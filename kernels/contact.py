@@ -636,7 +636,7 @@ def rest_margin(t, par, hdr, smp):
 @jit
 def static_margin(t, y, par, disc, hdr, smp):
     if disc[D_MODE] == MODE_WALL_REST:
-        return wall_rest_margin(t, y, par, hdr, smp)
+        return wall_rest_margin(t, y, par, disc, hdr, smp)
     return rest_margin(t, par, hdr, smp)
 
 
@@ -1115,14 +1115,13 @@ def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
 
 # ---------------------------------------------------------------- wall
 @jit
-def wall_rest_margin(t, y, par, hdr, smp):
-    """Resting on the wall (pivot on the wall side, sticking): the phase
+def wall_rest_margin(t, y, par, disc, hdr, smp):
+    """Resting on the wall (either pivot, sticking, disc[D_PIVOT]): the phase
     holds while the wall's normal force and the pivot's are >= 0 and the
     pivot sticks (mode solve with the wall contact closed)."""
     te = np.inf if t >= excitation_end(hdr) else t
     acc = np.empty(3)
-    w = par[P_WALL_SIDE]
-    j = 1 if w > 0.0 else 0
+    j = 1 if disc[D_PIVOT] > 0 else 0
     st0 = CS_STICK if j == 0 else CS_OPEN
     st1 = CS_STICK if j == 1 else CS_OPEN
     bx, by, bw = free_acc(te, par, hdr, smp)
@@ -1190,7 +1189,8 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     if (abs(y[1]) < opt[O_EPS_OMEGA] or chatter) and abs(vt) <= V_TOL:
         y[1] = 0.0
         project_single(j, y, par, True)
-        if wall_rest_margin(t, y, par, hdr, smp) >= 0.0:
+        disc[D_PIVOT] = s
+        if wall_rest_margin(t, y, par, disc, hdr, smp) >= 0.0:
             set_contacts(disc, CS_STICK if j == 0 else CS_OPEN,
                          CS_STICK if j == 1 else CS_OPEN, CS_FREE)
             disc[D_PIVOT] = s
