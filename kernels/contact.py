@@ -123,7 +123,7 @@ import math
 import numpy as np
 
 from .config import jit, jit_parallel
-from .excitation import excitation_end, ground, ground_rates
+from .excitation import excitation_end, ground
 from .friction import kinetic as fr_kinetic
 from .friction import routh_impact
 from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
@@ -132,9 +132,9 @@ from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, D_WALL_REST,
                      EV_CONTACT, EV_FLIGHT, EV_IMPACT, EV_REST, EV_SLIP,
                      EV_STICK, EV_UPLIFT, EV_WALL_IMPACT, EV_WALL_RELEASE,
                      EV_WALL_REST, FAIL_INCONSISTENT, LEANING, M_IMPACTS,
-                     M_MAX_SLIDE, M_N_LIFT_OFF, M_N_STICK_SLIP,
+                     M_MAX_SLIDE, M_N_STICK_SLIP,
                      M_RESIDUAL_SLIDE, M_T_CONTACT, M_T_LAST_IMPACT, M_T_PREV,
-                     M_T_ROCK, M_T_SLIDE, M_T_SLIDE_ROCK, M_T_UNLOADED,
+                     M_T_ROCK, M_T_SLIDE, M_T_SLIDE_ROCK,
                      M_T_UPLIFT, M_WALL_IMPACTS, MODE_FLIGHT, MODE_REST,
                      MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK, MODE_WALL_REST,
                      N_DISC, N_MET, O_EPS_OMEGA, O_EPS_T, O_T0, RUNNING,
@@ -143,25 +143,11 @@ from .rigid import (P_ALPHA, P_E, P_E_W, P_G, P_THETA_OVER, P_WALL_SIDE,
                     UPLIFT_RTOL, initial_pivot, overturned, passed_alpha,
                     track_rotation)
 
-# ---- parameters (see the module docstring) ---------------------------------
-C_B1 = 10
-C_H1 = 11
-C_IG = 12
-C_MU_S = 13
-C_MU_K = 14
-C_B2 = 15
-C_H2 = 16
-C_GAP = 17
-C_MU_W = 18
-C_HT1 = 19
-C_HT2 = 20
-N_PAR = 24
+# ---- parameters and flight metrics: kernels/layout.py ----------------------
+from .layout import (C_B1, C_B2, C_GAP, C_H1, C_H2, C_HT1, C_HT2,  # noqa: E402,F401
+                     C_IG, C_MU_K, C_MU_S, C_MU_W, M_MAX_JUMP, M_N_FLIGHTS,
+                     M_T_FLIGHT, N_PAR_CONTACT as N_PAR)
 N_STATE = 6
-
-# ---- metrics in slots the rigid friction model leaves free (module-local) --
-M_N_FLIGHTS = M_N_LIFT_OFF      # 27: number of flights
-M_T_FLIGHT = M_T_UNLOADED       # 26: s in flight
-M_MAX_JUMP = 31                 # m, largest CM rise above rest in flight
 assert M_MAX_JUMP < N_MET
 
 # ---- discrete state: one contact state per contact point -------------------

@@ -209,3 +209,26 @@ P_THETA_Y = 19      # rad, M g b / k_t (switching)
 P_I_C = 20          # kg m^2, I_G + M h^2 (inertia about the base centre)
 P_I_0 = 21          # kg m^2, I_G + M R^2 (inertia about a corner)
 N_PAR_FOUNDATION = 24
+
+# planar rigid body with contact points (kernels.contact), after the rigid
+# entries (P_WALL_SIDE and P_E_W as the wall model); the first five share the
+# friction model's indices, so a friction vector padded with C_B2 = Q_B and
+# C_H2 = Q_H is a contact vector
+C_B1 = 10           # m, half-width left of the centre of mass
+C_H1 = 11           # m, CM height above the left base corner
+C_IG = 12           # m^2, I_G / M
+C_MU_S = 13         # static friction at the base (inf: never slips)
+C_MU_K = 14
+C_B2 = 15           # m, half-width right of the CM
+C_H2 = 16           # m, CM height above the right base corner
+C_GAP = 17          # m, clear wall gap d (inf: no wall)
+C_MU_W = 18         # wall friction (only 0, frictionless, is implemented)
+C_HT1 = 19          # m, height of the top-left corner above the CM
+C_HT2 = 20          # m, height of the top-right corner above the CM
+N_PAR_CONTACT = 24
+LIFT_OFF_FLIGHT = 2   # Friction(lift_off="flight"): the contact model flies
+
+# metrics of free flight, in slots the other rigid models leave free
+M_N_FLIGHTS = M_N_LIFT_OFF      # number of flights
+M_T_FLIGHT = M_T_UNLOADED       # s in flight
+M_MAX_JUMP = 31                 # m, largest rise of the CM above its rest height in a flight
