@@ -181,6 +181,8 @@ V_TOL = 1e-12
 # (relative to the base width): the landing is then flat
 FLAT_RTOL = 1e-9
 MAX_N = 6
+# D_SLIP_DIR in ROCK: the pivot is held although N < 0 (no consistent mode)
+JAM = 2
 
 
 # ---------------------------------------------------------------- geometry
@@ -585,7 +587,10 @@ def event(k, t, y, par, disc, hdr, smp):
     j = 1 if s > 0 else 0
     N = N1 if j == 1 else N0
     F = F1 if j == 1 else F0
+    jam = mode == MODE_ROCK and disc[D_SLIP_DIR] == JAM
     if k == K_LIFT:
+        if jam:
+            return -free_normal_acc(j, t, y, par, hdr, smp), 0.0, True
         if mode == MODE_ROCK and not np.isfinite(par[C_MU_S]):
             return max(N, -free_normal_acc(j, t, y, par, hdr, smp)), 0.0, True
         return N, 0.0, True
@@ -593,6 +598,8 @@ def event(k, t, y, par, disc, hdr, smp):
         mu = par[C_MU_S]
         if not np.isfinite(mu):
             return np.inf, 0.0, True
+        if jam:
+            return -N, 0.0, True
         return mu * N - abs(F), 0.0, True
     # K_STICK (SLIDE_ROCK)
     sig = disc[D_SLIP_DIR]
@@ -748,7 +755,16 @@ def mark_uplift(t, met):
 
 @jit
 def enter_flight(t, y, par, disc, met, log, cnt):
+    """Flight from a contact mode: the base corners that were closed are
+    put on the ground with no downward velocity (they were on it up to the
+    integration error), so that no landing fires at the lift-off itself."""
     s = disc[D_PIVOT]
+    for k in range(2):
+        if disc[D_CS0 + k] != CS_OPEN:
+            gap, vn, _vt = point_kin(k, y, par)
+            y[4] -= gap
+            if vn < 0.0:
+                y[5] -= vn
     set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
     disc[D_PIVOT] = s
     met[M_N_FLIGHTS] += 1
@@ -864,10 +880,27 @@ def pick_flat(t, y, par, disc, hdr, smp, met, log, cnt):
 
 
 @jit
+def set_single(j, st, disc):
+    """Base corner j alone on the ground in contact state st."""
+    set_contacts(disc, st if j == 0 else CS_OPEN, st if j == 1 else CS_OPEN,
+                 CS_OPEN)
+    disc[D_PIVOT] = 1 if j == 1 else -1
+
+
+@jit
 def pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, forbid_stick):
     """Base corner j on the ground (after an impact or landing, or at a
-    stick / slip event), the other one off it: pick ROCK, SLIDE_ROCK or
-    FLIGHT by the mode solve."""
+    stick / slip / lift event), the other one off it: pick ROCK, SLIDE_ROCK
+    or FLIGHT by the mode solve (physics.md 4.2, 4.5, 4.6).
+
+    Order: stick (N >= 0, |F| <= mu_s N; mu_s = inf: the held pivot of
+    ``stick_holds``), slip from rest in sigma = -sgn F_req, then in -sigma
+    (N >= 0 and the slip not reversed, sigma a_t >= 0), flight if the free
+    corner does not accelerate into the ground.  With no consistent mode
+    (Painleve, mu large) the pivot is held as with mu = inf (ROCK with
+    D_SLIP_DIR = JAM) until the flight becomes consistent or N returns
+    >= 0.  A slipping corner with no consistent mode is stopped by a
+    plastic tangential impulse first (dissipative)."""
     project_single(j, y, par, False)
     _g, _vn, vt = point_kin(j, y, par)
     if vt != 0.0 and not np.isfinite(par[C_MU_K]):
@@ -879,34 +912,55 @@ def pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, forbid_stick):
         vt = 0.0
     acc = np.empty(3)
     s = 1 if j == 1 else -1
-    if vt == 0.0:
-        st0 = CS_STICK if j == 0 else CS_OPEN
-        st1 = CS_STICK if j == 1 else CS_OPEN
-        ok, N0, F0, N1, F1, _N2, _F2 = mode_solve(t, y, par, st0, st1,
-                                                  CS_OPEN, hdr, smp, acc)
-        N = N1 if j == 1 else N0
-        F = F1 if j == 1 else F0
-        if not (ok and stick_holds(N, j, t, y, par, hdr, smp)):
-            return enter_flight(t, y, par, disc, met, log, cnt)
-        if not forbid_stick and (abs(F) <= par[C_MU_S] * N
-                                 or not np.isfinite(par[C_MU_S])):
-            set_contacts(disc, st0, st1, CS_OPEN)
-            return RUNNING
-        sig = -1 if F > 0.0 else 1
-        met[M_N_STICK_SLIP] += 1
-        log_event(log, cnt, t, EV_SLIP, y[1], y[1], y[0], sig)
-    else:
+    if vt != 0.0:
         sig = sign_of(vt)
-    st = slip_state(sig)
-    st0 = st if j == 0 else CS_OPEN
-    st1 = st if j == 1 else CS_OPEN
-    ok, N0, _F0, N1, _F1, _N2, _F2 = mode_solve(t, y, par, st0, st1, CS_OPEN,
-                                                hdr, smp, acc)
+        st = slip_state(sig)
+        ok, N0, _F0, N1, _F1, _N2, _F2 = mode_solve(
+            t, y, par, st if j == 0 else CS_OPEN, st if j == 1 else CS_OPEN,
+            CS_OPEN, hdr, smp, acc)
+        N = N1 if j == 1 else N0
+        if ok and N >= 0.0:
+            set_single(j, st, disc)
+            return RUNNING
+        if free_normal_acc(j, t, y, par, hdr, smp) >= 0.0:
+            return enter_flight(t, y, par, disc, met, log, cnt)
+        # Painleve: the slip has no consistent continuation; a tangential
+        # impact stops it (plastic, dissipative), then pick from stick
+        stop_slip_impulsively(j, y, par)
+        project_single(j, y, par, True)
+        forbid_stick = False
+    st0 = CS_STICK if j == 0 else CS_OPEN
+    st1 = CS_STICK if j == 1 else CS_OPEN
+    ok, N0, F0, N1, F1, _N2, _F2 = mode_solve(t, y, par, st0, st1,
+                                              CS_OPEN, hdr, smp, acc)
     N = N1 if j == 1 else N0
-    if not (ok and N >= 0.0):
+    F = F1 if j == 1 else F0
+    if not np.isfinite(par[C_MU_S]):
+        if ok and stick_holds(N, j, t, y, par, hdr, smp):
+            set_single(j, CS_STICK, disc)
+            return RUNNING
         return enter_flight(t, y, par, disc, met, log, cnt)
-    set_contacts(disc, st0, st1, CS_OPEN)
-    disc[D_PIVOT] = s
+    if ok and not forbid_stick and N >= 0.0 and abs(F) <= par[C_MU_S] * N:
+        set_single(j, CS_STICK, disc)
+        return RUNNING
+    sig1 = -1 if F > 0.0 else 1
+    if np.isfinite(par[C_MU_K]):
+        for sig in (sig1, -sig1):
+            st = slip_state(sig)
+            ok2, N0, _F0, N1, _F1, _N2, _F2 = mode_solve(
+                t, y, par, st if j == 0 else CS_OPEN,
+                st if j == 1 else CS_OPEN, CS_OPEN, hdr, smp, acc)
+            Ns = N1 if j == 1 else N0
+            _an, at = contact_acc(j, y, par, acc)
+            if ok2 and Ns >= 0.0 and sig * at >= 0.0:
+                set_single(j, st, disc)
+                met[M_N_STICK_SLIP] += 1
+                log_event(log, cnt, t, EV_SLIP, y[1], y[1], y[0], sig)
+                return RUNNING
+    if free_normal_acc(j, t, y, par, hdr, smp) >= 0.0:
+        return enter_flight(t, y, par, disc, met, log, cnt)
+    set_single(j, CS_STICK, disc)
+    disc[D_SLIP_DIR] = JAM
     return RUNNING
 
 
@@ -1042,6 +1096,7 @@ def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     met[M_IMPACTS] += 1
     met[M_T_LAST_IMPACT] = t
     post = np.empty(3)
+    separates = False
     st0 = CS_STICK if j == 0 else CS_OPEN
     st1 = CS_STICK if j == 1 else CS_OPEN
     ok, N0, F0, N1, F1, _N2, _F2 = solve_contacts(
@@ -1056,11 +1111,21 @@ def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         wtn = -ry * rx / iG
         wnn = 1.0 + rx * rx / iG
         _gap, vn, vt = point_kin(j, y, par)
-        pt, pn = routh_general(wtt, wtn, wnn, vt, vn, par[C_MU_S],
-                               par[C_MU_K])
+        if np.isfinite(par[C_MU_S]):
+            pt, pn = routh_general(wtt, wtn, wnn, vt, vn, par[C_MU_S],
+                                   par[C_MU_K])
+        else:
+            # mu = inf and the stick impulse would pull (L_n < 0): the
+            # tangential impulse alone stops the slip, after which the
+            # corner leaves the ground (v_n+ = -(Schur) L_n > 0): plastic,
+            # dissipative
+            pt = -vt / wtt
+            pn = 0.0
         post[0] = vgx + pt
         post[1] = vgy + pn
         post[2] = om + (ry * pt - rx * pn) / iG
+        vn_post = vn + wtn * pt + wnn * pn
+        separates = vn_post > 1e-9 * abs(vn)
     # the other corner: on the ground and penetrating -> flat landing
     o = 1 - j
     bw = par[C_B1] + par[C_B2]
@@ -1096,6 +1161,9 @@ def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         if disc[D_MODE] == MODE_REST:
             log_event(log, cnt, t, EV_REST, om, 0.0, 0.0, 0)
         return st
+    if separates:
+        # the corner leaves the ground again: the flight goes on
+        return RUNNING
     return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
 
 
@@ -1125,6 +1193,84 @@ def wall_rest_margin(t, y, par, disc, hdr, smp):
 
 
 @jit
+def post_energy(y, par, post):
+    tmp = y.copy()
+    set_cm_velocity(tmp, par, post[0], post[1], post[2])
+    return kinetic_energy(tmp, par), tmp
+
+
+@jit
+def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post):
+    """Wall impact while base corner j is on the ground with Coulomb
+    friction mu_s, mu_k (finite): the wall's post-impact normal velocity is
+    tgt = -e_w v_n-, the pivot's normal velocity stays 0 and its tangential
+    impulse obeys Coulomb.  Candidates, the first admissible one wins:
+    stick (L_n >= 0, |L_t| <= mu_s L_n), slip in sigma (the pre-impact
+    slip direction, or -sgn L_t of the stick solve from rest; L_t = -mu_k
+    sigma L_n, L_n >= 0, the slip not reversed), separation (the wall
+    impulse alone, admissible when the pivot then leaves the ground); each
+    must not raise the kinetic energy.  Else the sequential impact: the
+    wall impulse alone, then the plastic frictional impact of the pivot
+    (Routh), both dissipative.  Returns True when the pivot separates.
+
+    A tall-wall impact before the block passes its own instability
+    (theta_w < alpha) needs a pulling pivot impulse to keep the pivot down
+    (the CM, moving up, must reverse): no friction can provide it, and the
+    pivot separates."""
+    mu_s = par[C_MU_S]
+    mu_k = par[C_MU_K]
+    th = y[0]
+    om = y[1]
+    _g, _vn, vt0 = point_kin(j, y, par)
+    tol = before * (1.0 + 1e-12) + 1e-300
+    ok, N0, F0, N1, F1, _N2, _F2 = solve_targets(
+        th, vgx, vgy, om, 0.0, par, CS_STICK if j == 0 else CS_OPEN,
+        CS_STICK if j == 1 else CS_OPEN, CS_FREE, tgt, post)
+    N = N1 if j == 1 else N0
+    F = F1 if j == 1 else F0
+    if ok and N >= 0.0 and abs(F) <= mu_s * N:
+        E, _tmp = post_energy(y, par, post)
+        if E <= tol:
+            return False
+    if abs(vt0) > V_TOL:
+        sig = sign_of(vt0)
+    else:
+        sig = -1 if F > 0.0 else 1
+    cand = np.empty(3)
+    st = slip_state(sig)
+    ok, N0, _F0, N1, _F1, _N2, _F2 = solve_targets(
+        th, vgx, vgy, om, 0.0, par, st if j == 0 else CS_OPEN,
+        st if j == 1 else CS_OPEN, CS_FREE, tgt, cand)
+    N = N1 if j == 1 else N0
+    if ok and N >= 0.0:
+        E, tmp = post_energy(y, par, cand)
+        _g, _vn, vt1 = point_kin(j, tmp, par)
+        if E <= tol and sig * vt1 >= 0.0:
+            for i in range(3):
+                post[i] = cand[i]
+            return False
+    solve_targets(th, vgx, vgy, om, 0.0, par, CS_OPEN, CS_OPEN, CS_FREE, tgt,
+                  cand)
+    E, tmp = post_energy(y, par, cand)
+    _g, vn1, vt1 = point_kin(j, tmp, par)
+    for i in range(3):
+        post[i] = cand[i]
+    if vn1 >= 0.0:
+        return True
+    # sequential: the pivot approaches after the wall impulse alone
+    rx, ry = point_offset(j, th, par)
+    iG = par[C_IG]
+    wtt = 1.0 + ry * ry / iG
+    wtn = -ry * rx / iG
+    wnn = 1.0 + rx * rx / iG
+    pt, pn = routh_general(wtt, wtn, wnn, vt1, vn1, mu_s, mu_k)
+    post[0] += pt
+    post[1] += pn
+    post[2] += (ry * pt - rx * pn) / iG
+    return False
+
+
+@jit
 def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     """The wall corner reached the (frictionless) wall: impulse solve with
     the wall's post-impact normal velocity -e_w v_n- and, while rocking, the
@@ -1150,21 +1296,19 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     vgx, vgy = cm_velocity(y, par)
     post = np.empty(3)
     tgt = -e_w * vn2
+    separated = False
     if mode == MODE_FLIGHT:
         solve_targets(y[0], vgx, vgy, y[1], 0.0, par, CS_OPEN, CS_OPEN,
                       CS_FREE, tgt, post)
+    elif mode == MODE_ROCK and not np.isfinite(par[C_MU_S]):
+        # mu = inf: the pivot is held (bilateral, as the single-DOF map of
+        # kernels/wall.py: theta'+ = -e_w theta'-), whatever the sign of its
+        # normal impulse
+        solve_targets(y[0], vgx, vgy, y[1], 0.0, par,
+                      CS_STICK if j == 0 else CS_OPEN,
+                      CS_STICK if j == 1 else CS_OPEN, CS_FREE, tgt, post)
     else:
-        stp = CS_STICK if mode == MODE_ROCK else CS_FREE
-        ok, N0, _F0, N1, _F1, _N2, _F2 = solve_targets(
-            y[0], vgx, vgy, y[1], 0.0, par, stp if j == 0 else CS_OPEN,
-            stp if j == 1 else CS_OPEN, CS_FREE, tgt, post)
-        N = N1 if j == 1 else N0
-        if not ok or (N < 0.0 and (mode != MODE_ROCK
-                                   or np.isfinite(par[C_MU_S]))):
-            # the pivot would be pulled (held only with mu = inf, as the
-            # single-DOF map of kernels/wall.py): the wall impulse alone
-            solve_targets(y[0], vgx, vgy, y[1], 0.0, par, CS_OPEN, CS_OPEN,
-                          CS_FREE, tgt, post)
+        separated = wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post)
     set_cm_velocity(y, par, post[0], post[1], post[2])
     check_energy(before, kinetic_energy(y, par), met)
     track_rotation(y[0], met)
@@ -1172,7 +1316,16 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     if mode == MODE_FLIGHT:
         return RUNNING
     _g, _vn, vt = point_kin(j, y, par)
-    if (abs(y[1]) < opt[O_EPS_OMEGA] or chatter) and abs(vt) <= V_TOL:
+    settle = abs(y[1]) < opt[O_EPS_OMEGA] or chatter
+    if separated and (settle or abs(pre) < opt[O_EPS_OMEGA]):
+        # wall chatter through short flights (the wall impact lifts the
+        # pivot, the landing brings it back): it ends by the rest rule,
+        # resting on the wall (all velocities 0: dissipative)
+        vt = 0.0
+        settle = True
+    elif separated:
+        return enter_flight(t, y, par, disc, met, log, cnt)
+    if settle and abs(vt) <= V_TOL:
         y[1] = 0.0
         project_single(j, y, par, True)
         disc[D_PIVOT] = s
@@ -1251,9 +1404,14 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     if k == K_LIFT:
         if mode == MODE_SLIDE:
             return pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
-        return enter_flight(t, y, par, disc, met, log, cnt)
+        if free_normal_acc(j, t, y, par, hdr, smp) >= 0.0:
+            return enter_flight(t, y, par, disc, met, log, cnt)
+        # N = 0 but the free corner would fall into the ground: re-pick
+        return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
     if k == K_SLIP:
-        return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, True)
+        jam = mode == MODE_ROCK and disc[D_SLIP_DIR] == JAM
+        return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
+                           not jam)
     # K_STICK: the slip velocity reached zero
     met[M_N_STICK_SLIP] += 1
     if mode == MODE_SLIDE:
