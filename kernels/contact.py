@@ -599,7 +599,8 @@ def event(k, t, y, par, disc, hdr, smp):
         if not np.isfinite(mu):
             return np.inf, 0.0, True
         if jam:
-            return -N, 0.0, True
+            # the jam ends when N returns clearly >= 0
+            return 1e-9 * par[P_G] - N, 0.0, True
         return mu * N - abs(F), 0.0, True
     # K_STICK (SLIDE_ROCK)
     sig = disc[D_SLIP_DIR]
@@ -952,7 +953,9 @@ def pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, forbid_stick):
                 st if j == 1 else CS_OPEN, CS_OPEN, hdr, smp, acc)
             Ns = N1 if j == 1 else N0
             _an, at = contact_acc(j, y, par, acc)
-            if ok2 and Ns >= 0.0 and sig * at >= 0.0:
+            # (a_t = 0 up to rounding at the stick / slip boundary)
+            if ok2 and Ns >= 0.0 and sig * at >= -1e-12 * (
+                    par[P_G] + abs(acc[0]) + abs(acc[1])):
                 set_single(j, st, disc)
                 met[M_N_STICK_SLIP] += 1
                 log_event(log, cnt, t, EV_SLIP, y[1], y[1], y[0], sig)
@@ -1223,12 +1226,12 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post):
     om = y[1]
     _g, _vn, vt0 = point_kin(j, y, par)
     tol = before * (1.0 + 1e-12) + 1e-300
-    ok, N0, F0, N1, F1, _N2, _F2 = solve_targets(
+    ok, N0, F0, N1, F1, N2, _F2 = solve_targets(
         th, vgx, vgy, om, 0.0, par, CS_STICK if j == 0 else CS_OPEN,
         CS_STICK if j == 1 else CS_OPEN, CS_FREE, tgt, post)
     N = N1 if j == 1 else N0
     F = F1 if j == 1 else F0
-    if ok and N >= 0.0 and abs(F) <= mu_s * N:
+    if ok and N >= 0.0 and N2 >= 0.0 and abs(F) <= mu_s * N:
         E, _tmp = post_energy(y, par, post)
         if E <= tol:
             return False
@@ -1238,11 +1241,11 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post):
         sig = -1 if F > 0.0 else 1
     cand = np.empty(3)
     st = slip_state(sig)
-    ok, N0, _F0, N1, _F1, _N2, _F2 = solve_targets(
+    ok, N0, _F0, N1, _F1, N2, _F2 = solve_targets(
         th, vgx, vgy, om, 0.0, par, st if j == 0 else CS_OPEN,
         st if j == 1 else CS_OPEN, CS_FREE, tgt, cand)
     N = N1 if j == 1 else N0
-    if ok and N >= 0.0:
+    if ok and N >= 0.0 and N2 >= 0.0:
         E, tmp = post_energy(y, par, cand)
         _g, _vn, vt1 = point_kin(j, tmp, par)
         if E <= tol and sig * vt1 >= 0.0:
@@ -1257,16 +1260,37 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post):
         post[i] = cand[i]
     if vn1 >= 0.0:
         return True
-    # sequential: the pivot approaches after the wall impulse alone
+    # sequential impulses (projected Gauss-Seidel): the pivot approaches
+    # after the wall impulse alone; alternate plastic frictional impacts of
+    # the pivot (Routh) and plastic wall impacts while either contact
+    # approaches.  Each one is a single-contact impulse that pushes, stays
+    # in its Coulomb cone and dissipates, so the sum does too.
     rx, ry = point_offset(j, th, par)
     iG = par[C_IG]
     wtt = 1.0 + ry * ry / iG
     wtn = -ry * rx / iG
     wnn = 1.0 + rx * rx / iG
-    pt, pn = routh_general(wtt, wtn, wnn, vt1, vn1, mu_s, mu_k)
-    post[0] += pt
-    post[1] += pn
-    post[2] += (ry * pt - rx * pn) / iG
+    rwx, rwy = point_offset(2, th, par)
+    nwx = -par[P_WALL_SIDE]
+    jw = rwy * nwx
+    ww = nwx * nwx + jw * jw / iG
+    scale = math.sqrt(2.0 * before) + 1e-300
+    for _it in range(200):
+        tmp = y.copy()
+        set_cm_velocity(tmp, par, post[0], post[1], post[2])
+        _g, vn1, vt1 = point_kin(j, tmp, par)
+        if vn1 < 0.0:
+            pt, pn = routh_general(wtt, wtn, wnn, vt1, vn1, mu_s, mu_k)
+            post[0] += pt
+            post[1] += pn
+            post[2] += (ry * pt - rx * pn) / iG
+            set_cm_velocity(tmp, par, post[0], post[1], post[2])
+        _g, vn2, _vt2 = point_kin(2, tmp, par)
+        if vn2 >= -1e-12 * scale:
+            break
+        pw = -vn2 / ww
+        post[0] += nwx * pw
+        post[2] += jw * pw / iG
     return False
 
 
@@ -1407,7 +1431,8 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         if free_normal_acc(j, t, y, par, hdr, smp) >= 0.0:
             return enter_flight(t, y, par, disc, met, log, cnt)
         # N = 0 but the free corner would fall into the ground: re-pick
-        return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+        # (not stick again: N has just reached 0)
+        return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, True)
     if k == K_SLIP:
         jam = mode == MODE_ROCK and disc[D_SLIP_DIR] == JAM
         return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
