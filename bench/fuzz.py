@@ -708,8 +708,9 @@ def case_kinds(res):
 
 
 def run_family(family, cases, seed, chunk=32, time_limit=120.0, checks=True, sims=True, start=0,
-               on_batch=None):
-    """Run batches of ``family`` until ``cases`` main-grid cases are done.
+               on_batch=None, max_seconds=None):
+    """Run batches of ``family`` until ``cases`` main-grid cases are done (or, with
+    ``max_seconds``, until that much time has passed: no new batch starts after it).
 
     Returns (rows, summary): rows = one dict per case; summary = dict of counters."""
     rows = []
@@ -717,7 +718,10 @@ def run_family(family, cases, seed, chunk=32, time_limit=120.0, checks=True, sim
             "reported": Counter(), "checked": Counter(), "skipped": Counter(), "first": {},
             "batch_times": [], "energy_growth": []}
     b = start
+    t_family = time.perf_counter()
     while summ["cases"] < cases:
+        if max_seconds is not None and time.perf_counter() - t_family > max_seconds:
+            break
         P = draw_batch(family, seed, b, chunk)
         t0 = time.perf_counter()
         res = run_batch(P, time_limit, checks, sims)
@@ -840,6 +844,8 @@ def main(argv=None):
     ap.add_argument("--time-limit", type=float, default=120.0, help="seconds per batch (and per check run)")
     ap.add_argument("--no-checks", action="store_true", help="status and NaN only (no invariants, no simulate)")
     ap.add_argument("--replay", default=None, help="re-run one batch, e.g. wall:1:17")
+    ap.add_argument("--max-seconds", type=float, default=None,
+                    help="per family: start no new batch after this many seconds (fewer cases than --cases)")
     ap.add_argument("--quiet", action="store_true")
     a = ap.parse_args(argv)
     if a.replay:
@@ -861,7 +867,7 @@ def main(argv=None):
                                  f"{time.perf_counter() - _t0:7.1f} s total   ")
                 sys.stderr.flush()
         rows, summ = run_family(fam, a.cases, a.seed, a.chunk, a.time_limit, not a.no_checks, not a.no_checks,
-                                on_batch=progress)
+                                on_batch=progress, max_seconds=a.max_seconds)
         if not a.quiet:
             sys.stderr.write("\n")
         summ["seconds"] = time.perf_counter() - t0
