@@ -47,9 +47,11 @@ def _wall(args):
 
 
 def _friction(args):
-    if getattr(args, "mu_s", None) is None:
-        return None
     from .friction import Friction
+    if getattr(args, "mu_s", None) is None:
+        if getattr(args, "lift_off", None) == "flight":
+            return Friction(math.inf, lift_off="flight")
+        return None
     return Friction(args.mu_s, args.mu_k, lift_off=args.lift_off)
 
 
@@ -95,9 +97,10 @@ def _add_body_options(p):
     f = p.add_argument_group("friction (sliding)")
     f.add_argument("--mu-s", type=float, help="static friction coefficient (default: no sliding)")
     f.add_argument("--mu-k", type=float, help="kinetic friction coefficient (default mu_s)")
-    f.add_argument("--lift-off", default="stop", choices=("stop", "hold"),
-                   help="flexible body, N reaching 0 while rocking: stop with 'flight' (default) or hold the "
-                        "pivot down, slipping without friction while N < 0")
+    f.add_argument("--lift-off", default="stop", choices=("stop", "hold", "flight"),
+                   help="the normal force reaching 0: stop with outcome 'flight' (default); 'flight' (rigid "
+                        "block): fly and land, without --mu-s never slipping; 'hold' (flexible body): hold "
+                        "the pivot down, slipping without friction while N < 0")
 
 
 def _add_solver_options(p):
@@ -212,7 +215,10 @@ def build_parser():
     s.set_defaults(func=cmd_simulate)
 
     s = sub.add_parser("warmup", help="compile (or load from cache) the kernels ahead of a sweep")
-    s.add_argument("models", nargs="*", default=None, help="kernels to compile (default: all)")
+    s.add_argument("models", nargs="*", default=None,
+                   help="models to compile: registry names (rigid, rigid_wall, rigid_friction, contact, flexible, "
+                        "flexible_friction, two_spring, switching, linear_sdof) or the families wall, friction, "
+                        "foundation (default: every model)")
     s.set_defaults(func=cmd_warmup)
 
     for register in _extra_commands():

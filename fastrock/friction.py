@@ -9,7 +9,7 @@ from fastrock.kernels import layout as _L
 
 DEFAULT_SLIDE_TOLERANCE = 1e-3   # m
 
-LIFT_OFF = {"stop": _L.LIFT_OFF_STOP, "hold": _L.LIFT_OFF_HOLD}
+LIFT_OFF = {"stop": _L.LIFT_OFF_STOP, "hold": _L.LIFT_OFF_HOLD, "flight": _L.LIFT_OFF_FLIGHT}
 
 
 @dataclass(frozen=True)
@@ -21,12 +21,16 @@ class Friction:
     kernel and pays nothing for friction.  ``slide_tolerance`` [m]: a safe run
     whose residual slip exceeds it has outcome "slide" (default 1 mm).
 
-    ``lift_off`` (FlexibleBody only): what happens when the normal force N
-    reaches 0 while the body rocks.  "stop" (default): the run ends with
-    outcome "flight" (physics.md 4.6).  "hold": the pivot is held on the
-    ground, as the classic rocking models implicitly do (they never check
-    N), and the base slips without friction while N < 0; the time spent so
-    is reported as ``time_unloaded``.
+    ``lift_off``: what happens when the normal force N reaches 0.  "stop"
+    (default): the run ends with outcome "flight".  "flight" (RigidBlock):
+    the body leaves the ground and flies as a free body until it lands on a
+    corner or flat (plastic normal impact with Coulomb friction), in the
+    contact model (``fastrock.registry``: ``contact``); it reports
+    ``flights``, ``time_flight`` and ``max_jump``.  With ``mu_s = inf`` it
+    never slips but still flies.  "hold" (FlexibleBody): the pivot is held
+    on the ground, as the classic rocking models implicitly do (they never
+    check N), and the base slips without friction while N < 0; the time
+    spent so is reported as ``time_unloaded``.
     """
 
     mu_s: float

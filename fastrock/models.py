@@ -67,17 +67,50 @@ def rigid_friction_par(body: RigidBlock, friction):
                          "stops with outcome 'flight' when N reaches 0")
     par = np.zeros(K.N_PAR_FRICTION)
     par[: len(rigid_par(body))] = rigid_par(body)
-    if body.b is not None and body.h is not None:
-        b, h = body.b, body.h
-    else:   # a rectangle of the given alpha and p
-        R = 3.0 * body.g / (4.0 * body.p ** 2)
-        b, h = R * np.sin(body.alpha), R * np.cos(body.alpha)
+    b, h = _rectangle(body)
     R2 = b * b + h * h
     par[K.Q_B] = b
     par[K.Q_H] = h
     par[K.Q_IG] = body.g * np.sqrt(R2) / body.p ** 2 - R2
     par[K.Q_MU_S] = friction.mu_s
     par[K.Q_MU_K] = friction.mu_k
+    return par
+
+
+def _rectangle(body):
+    """(b, h): half-width and CM height of the block (a rectangle of the given alpha and p
+    when it was built from them)."""
+    if body.b is not None and body.h is not None:
+        return body.b, body.h
+    R = 3.0 * body.g / (4.0 * body.p ** 2)
+    return R * np.sin(body.alpha), R * np.cos(body.alpha)
+
+
+def contact_par(body: RigidBlock, friction, wall=None):
+    """Parameters of the contact model (kernels/contact.py): a symmetric block whose base
+    corners touch the ground with ``friction`` (mu_s may be inf), and a tall frictionless wall."""
+    from fastrock.kernels import layout as K
+    par = np.zeros(K.N_PAR_CONTACT)
+    par[: K.N_PAR_RIGID] = rigid_par(body)
+    b, h = _rectangle(body)
+    R2 = b * b + h * h
+    par[K.C_B1] = par[K.C_B2] = b
+    par[K.C_H1] = par[K.C_H2] = h
+    par[K.C_HT1] = par[K.C_HT2] = h
+    par[K.C_IG] = body.g * np.sqrt(R2) / body.p ** 2 - R2
+    par[K.C_MU_S] = friction.mu_s
+    par[K.C_MU_K] = friction.mu_k
+    par[K.C_GAP] = np.inf
+    if wall is not None:
+        if wall.gap == 0.0:
+            raise ValueError("wall: gap = 0 (Hogan's one-sided rocking) is not in the contact model yet; "
+                             "run it without friction and flight (the wall model)")
+        if wall.height is not None and wall.height < 2.0 * h:
+            raise ValueError("wall: a wall lower than the block (height < 2h) is not in the contact model "
+                             "yet; run it without friction and flight (the wall model)")
+        par[K.P_WALL_SIDE] = float(wall.side)
+        par[K.P_E_W] = wall.restitution
+        par[K.C_GAP] = wall.gap
     return par
 
 

@@ -24,6 +24,7 @@ STATUS = {
     L.FAIL_INCONSISTENT: "failed:inconsistent-contact",
     L.FAIL_UNSTABLE: "failed:unstable-step",
     L.FAIL_INTERRUPTED: "failed:interrupted",
+    L.FAIL_FACE_CONTACT: "failed:face-contact",
     L.RUNNING: "failed:unfinished",
 }
 
@@ -44,6 +45,8 @@ STATUS_DESCRIPTION = {
                             "body (the solution diverged or would have): a smaller dt, or the adaptive "
                             "solver, gives the answer",
     "failed:interrupted": "stopped by Ctrl-C before the run finished",
+    "failed:face-contact": "the block slid (or flew) until its base reached the wall: a face contact, which "
+                           "the contact model does not represent yet",
 }
 
 

@@ -72,6 +72,7 @@ class Model:
     cli_options: tuple = ()
     toml_keys: tuple = ()
     summary: str = ""
+    also: tuple = ()                # further effect sets (frozensets) the model runs
 
     @property
     def simulate_entry(self):
@@ -99,7 +100,11 @@ class Model:
 
     @property
     def friction(self):
-        return "friction" in self.effects
+        return "d" in self.state_names
+
+    @property
+    def flight(self):
+        return "flight" in self.effects
 
     def load(self):
         return importlib.import_module(f"fastrock.kernels.{self.module}")
@@ -136,13 +141,16 @@ _BY_SCENE: dict[tuple, Model] = {}
 
 #: Combinations that no model runs yet, with the reason the error gives.
 NOT_AVAILABLE = {
-    ("rigid", frozenset({"wall", "friction"})):
-        "a rigid block with both wall= and friction= needs the contact core (issue #13), not "
-        "available yet; run it without friction (the wall model) or without the wall",
     ("flexible", frozenset({"wall"})):
         "wall= is not available for FlexibleBody yet (issue #13)",
     ("flexible", frozenset({"wall", "friction"})):
         "wall= is not available for FlexibleBody yet (issue #13)",
+    ("flexible", frozenset({"flight"})):
+        "lift_off='flight' is available for RigidBlock only: free flight of the flexible body (the "
+        "column with its base) is not in the contact core yet; use 'stop' or 'hold'",
+    ("flexible", frozenset({"friction", "flight"})):
+        "lift_off='flight' is available for RigidBlock only: free flight of the flexible body (the "
+        "column with its base) is not in the contact core yet; use 'stop' or 'hold'",
     ("rigid", frozenset({"foundation", "wall"})):
         "a wall beside a block on a flexible foundation is not available yet (issue #13)",
     ("rigid", frozenset({"foundation", "friction"})):
@@ -155,14 +163,16 @@ NOT_AVAILABLE = {
 
 def register(model: Model):
     """Add a model; its (body, effects) combination must be new."""
-    key = (model.body, model.effects)
+    keys = [(model.body, fx) for fx in (model.effects,) + tuple(model.also)]
     if model.name in MODELS:
         raise ValueError(f"model {model.name!r} is registered already")
-    if key in _BY_SCENE:
-        raise ValueError(f"{_BY_SCENE[key].name!r} already runs a {model.body} body with "
-                         f"{sorted(model.effects) or 'no effects'}")
+    for key in keys:
+        if key in _BY_SCENE:
+            raise ValueError(f"{_BY_SCENE[key].name!r} already runs a {model.body} body with "
+                             f"{sorted(key[1]) or 'no effects'}")
     MODELS[model.name] = model
-    _BY_SCENE[key] = model
+    for key in keys:
+        _BY_SCENE[key] = model
     return model
 
 
@@ -191,6 +201,8 @@ def scene_effects(wall=None, friction=None, foundation=None):
             raise ValueError(f"friction must be a fastrock.Friction, got {type(friction).__name__}")
         if friction.sliding_possible:
             effects["friction"] = friction
+        if friction.lift_off == "flight":
+            effects["flight"] = friction
     if foundation is not None:
         from .foundation import FOUNDATIONS
         if not isinstance(foundation, FOUNDATIONS):
@@ -257,6 +269,11 @@ def _flexible_friction(body, fx, mass):
     return flexible_friction_par(body, fx["friction"])
 
 
+def _contact(body, fx, mass):
+    from .models import contact_par
+    return contact_par(body, fx.get("friction") or fx.get("flight"), fx.get("wall"))
+
+
 def _foundation(body, fx, mass):
     from .foundation import foundation_par
     return foundation_par(body, fx["foundation"], mass)
@@ -291,6 +308,17 @@ register(Model(
     outcomes=("safe", "slide", "mode1", "mode2", "flight", "failed"),
     cli_options=_RIGID_CLI + _FRICTION_CLI, toml_keys=_RIGID_TOML + ("friction",),
     summary="rigid block with Coulomb friction: rest, slide, rock, slide-rock"))
+register(Model(
+    "contact", "contact", "rigid", frozenset({"wall", "friction"}),
+    ("theta", "theta_dot", "d", "d_dot", "z", "z_dot"), _contact,
+    columns=("toward_wall", "max_rotation_toward_wall", "max_rotation_away_from_wall") + _FRICTION_COLUMNS
+    + ("flights", "time_flight", "max_jump"),
+    outcomes=("safe", "slide", "mode1", "mode2", "leaning", "failed"),
+    cli_options=_RIGID_CLI + _WALL_CLI + _FRICTION_CLI, toml_keys=_RIGID_TOML + ("wall", "friction"),
+    summary="rigid block with contact points (base corners, wall corner): rest, slide, rock, "
+            "slide-rock, free flight and landing, wall impacts; the generic mode solve",
+    also=(frozenset({"flight"}), frozenset({"friction", "flight"}), frozenset({"wall", "flight"}),
+          frozenset({"wall", "friction", "flight"}))))
 register(Model(
     "flexible", "flexible", "flexible", frozenset(), ("u", "u_dot", "theta", "theta_dot"),
     _flexible, columns=_FLEX_COLUMNS, outcomes=("safe", "mode1", "mode2", "flight", "failed"),

@@ -308,7 +308,7 @@ def _sweep_arrays(records, rec_idx, specs, solver, t_after, early_exit, progress
         OPT[:, L.O_T_END] = HDR[:, L.X_DUR] + t_after
         Y0 = np.zeros((m, specs[rows[0]].n_state))
         st, met, yf, done = run_sweep(specs[rows[0]].sweep, Y0, PAR, HDR, smp, OPT, chunk_size,
-                                      progress, label=f"runs ({kname})")
+                                      progress, label=f"runs ({kname})", model=kname)
         status[rows[:done]] = st[:done]
         MET[rows[:done]] = met[:done]
         YF[rows[:done]] = yf[:done, :2]

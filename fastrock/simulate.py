@@ -62,6 +62,15 @@ def friction_metrics(MET, flexible=False):
     return d
 
 
+def flight_metrics(MET):
+    """Free-flight metrics (contact model) from rows of kernel metrics (arrays)."""
+    return {
+        "flights": np.nan_to_num(MET[:, L.M_N_FLIGHTS]).astype(int),
+        "time_flight": MET[:, L.M_T_FLIGHT],
+        "max_jump": MET[:, L.M_MAX_JUMP],
+    }
+
+
 def flexible_metrics(MET, body):
     """Flexible-body metrics from rows of kernel metrics (arrays)."""
     umax = np.maximum(MET[:, L.M_MAX_U], MET[:, L.M_MIN_U])
@@ -222,6 +231,10 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     if spec.friction:
         history["d"] = hist_y[:nh, spec.slide_index]
         history["d_dot"] = hist_y[:nh, spec.slide_index + 1]
+    if "z" in spec.state_names:     # height of the base above the ground (free flight)
+        iz = spec.state_names.index("z")
+        history["z"] = hist_y[:nh, iz]
+        history["z_dot"] = hist_y[:nh, iz + 1]
     events = events_frame(log[:int(cnt[C_NLOG])], cnt)
     metrics = metrics_dict(met, body)
     outcome = outcome_of(code)
@@ -232,6 +245,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
             metrics["lift_offs"] = int(metrics["lift_offs"])
         if outcome == "safe" and abs(metrics["residual_slide"]) > friction.slide_tolerance:
             outcome = "slide"
+    if spec.model.flight or spec.name == "contact":
+        metrics.update({k: v[0].item() for k, v in flight_metrics(met[None, :]).items()})
     if solver.dt:
         warn_unstable(code, met, solver.dt)
     if DEBUG:
@@ -249,6 +264,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
                             excitation=excitation,
                             effects=tuple(e for e, on in (("flexible", spec.flexible),
                                                           ("friction", spec.friction),
+                                                          ("flight", spec.model.flight),
                                                           ("wall", wall is not None),
                                                           ("vertical", vertical is not None)) if on))
 

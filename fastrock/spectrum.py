@@ -36,6 +36,9 @@ nfev                right-hand-side evaluations
 max_slide, residual_slide  max |d| and final d (with friction)  [m]
 time_sliding, time_slide_rocking, stick_slip  (with friction)
 time_rocking, time_contact  time lifted off / in full contact (flexible body, foundation)  [s]
+flights, time_flight, max_jump  free flights, time in flight [s] and the largest rise of the
+                    centre of mass above its rest height [m] (contact model: wall and
+                    friction, or Friction(lift_off="flight"))
 max_deformation     max |u|, the column's deflection (flexible body)  [m]
 max_deformation_ratio  max |u| / the deflection at uplift (flexible body)  [-]
 energy_gains        impacts that raised the kinetic energy (flexible body; pivot-switch map)
@@ -149,12 +152,16 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     else:
         Y0 = np.zeros((n, spec.n_state))
     status, MET, YF, done = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, chunk_size, progress,
-                                      label="runs")
+                                      label="runs", model=spec.name)
     df = pd.DataFrame({
         "amplitude_ratio": A, "frequency_ratio": F, "sign": S.astype(int),
         "amplitude": amp, "amplitude_g": amp / body.g, "frequency_hz": omega / (2 * np.pi),
     })
     df = _add_results(df, status, MET, body, wall, friction if spec.friction else None)
+    if spec.name == "contact":
+        from .simulate import flight_metrics
+        for k, v in flight_metrics(MET).items():
+            df[k] = v
     if foundation is not None:
         df["time_rocking"] = MET[:, L.M_T_ROCK]
         df["time_contact"] = MET[:, L.M_T_CONTACT]

@@ -68,11 +68,14 @@ def call_kernel(kernel, *args, opt):
         raise
 
 
-def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=True, label="runs"):
+def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=True, label="runs",
+              model=None):
     """Run a sweep kernel over rows in chunks.
 
     Returns (status, MET, YF, n_done).  On KeyboardInterrupt the finished
-    chunks are returned (n_done < n) with a warning, never lost.
+    chunks are returned (n_done < n) with a warning, never lost.  With
+    ``progress``, the first call of a model's kernel in this process
+    (``model``: its registry name) is announced before it may compile.
     """
     n = Y0.shape[0]
     status = np.full(n, L.RUNNING, dtype=np.int64)
@@ -81,6 +84,10 @@ def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=Tr
     if chunk_size is None:
         chunk_size = max(256, min(4096, n // 20 + 1))
     bar = Progress(n, progress and n > chunk_size, label)
+    if progress and model is not None and not getattr(sweep_kernel, "signatures", ()):
+        from .warmup import compile_notice
+        sys.stderr.write(compile_notice(model, sweep_kernel) + "\n")
+        sys.stderr.flush()
     done = 0
     try:
         while done < n:

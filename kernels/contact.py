@@ -131,7 +131,7 @@ from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, D_WALL_REST,
                      EV_CONTACT, EV_FLIGHT, EV_IMPACT, EV_REST, EV_SLIP,
                      EV_STICK, EV_UPLIFT, EV_WALL_IMPACT, EV_WALL_RELEASE,
-                     EV_WALL_REST, FAIL_INCONSISTENT, LEANING, M_IMPACTS,
+                     EV_WALL_REST, FAIL_FACE_CONTACT, FAIL_INCONSISTENT, LEANING, M_IMPACTS,
                      M_MAX_SLIDE, M_N_STICK_SLIP,
                      M_RESIDUAL_SLIDE, M_T_CONTACT, M_T_LAST_IMPACT, M_T_PREV,
                      M_T_ROCK, M_T_SLIDE, M_T_SLIDE_ROCK,
@@ -1312,11 +1312,10 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     met[M_WALL_IMPACTS] += 1
     chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
     met[M_T_LAST_IMPACT] = t
-    if mode == MODE_SLIDE:
-        y[3] = -e_w * y[3]
-        log_event(log, cnt, t, EV_WALL_IMPACT, pre, y[1], y[0], s)
-        check_energy(before, kinetic_energy(y, par), met)
-        return pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+    if mode == MODE_SLIDE or base_at_wall(y, par, 1e-6):
+        # the block slid flat into the wall: a face contact, not in this model yet
+        log_event(log, cnt, t, EV_WALL_IMPACT, pre, pre, y[0], s)
+        return FAIL_FACE_CONTACT
     vgx, vgy = cm_velocity(y, par)
     post = np.empty(3)
     tgt = -e_w * vn2
@@ -1450,9 +1449,27 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
 
 
 @jit
+def base_at_wall(y, par, rtol=1e-9):
+    """The base corner on the wall side has reached the wall plane (to rtol
+    of the half-width): the face touches the wall, a contact this model does
+    not represent yet."""
+    if not wall_active(par):
+        return False
+    w = par[P_WALL_SIDE]
+    k = 1 if w > 0.0 else 0
+    bw = par[C_B2] if w > 0.0 else par[C_B1]
+    hm = hmid(par)
+    rx, _ry = point_offset(k, y[0], par)
+    gx = y[2] + hm * math.sin(y[0])
+    return bw + par[C_GAP] - w * (gx + rx) <= rtol * bw
+
+
+@jit
 def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     book_time(t, disc, met)
     mode = disc[D_MODE]
+    if base_at_wall(y, par):
+        return FAIL_FACE_CONTACT
     if mode == MODE_FLIGHT:
         track_jump(y, par, met)
     else:

@@ -750,9 +750,10 @@ def test_friction_must_be_a_friction_object():
         fr.simulate(SLIDER, Pulse(0.1, 1.0), friction=0.3)
 
 
-def test_friction_with_wall_is_refused():
-    with pytest.raises(ValueError, match="friction"):
-        fr.simulate(SLIDER, Pulse(0.1, 1.0), friction=Friction(0.3), wall=fr.Wall(gap=0.01))
+def test_friction_with_wall_runs_the_contact_model():
+    # refused before the contact model (issue #13); its oracles are in test_contact_scenes.py
+    r = fr.simulate(SLIDER, Pulse(0.1, 1.0), friction=Friction(0.3), wall=fr.Wall(gap=0.01))
+    assert r.kernel == "contact"
 
 
 # ---------------------------------------------------------------------------------------------

@@ -27,6 +27,8 @@ FLEX = FlexibleBody(0.2, 2.0, 10.0)
     (BLOCK, {"foundation": TwoSpringFoundation(1e6, 1e3)}, "two_spring"),
     (BLOCK, {"foundation": SwitchingFoundation(1e5)}, "switching"),
     (BLOCK, {"foundation": LinearVibration(1e5)}, "linear_sdof"),
+    (BLOCK, {"wall": Wall(gap=0.01), "friction": Friction(0.4)}, "contact"),
+    (BLOCK, {"friction": Friction(math.inf, lift_off="flight")}, "contact"),
 ])
 def test_a_scene_selects_exactly_its_model(body, kw, name):
     spec = registry.select(body, **kw)
@@ -34,14 +36,14 @@ def test_a_scene_selects_exactly_its_model(body, kw, name):
     model = registry.MODELS[name]
     assert spec.model is model
     assert spec.n_state == len(model.state_names) and model.state_names[spec.theta_index] == "theta"
-    assert spec.friction == ("friction" in kw and kw["friction"].sliding_possible)
+    assert spec.friction == (name in ("rigid_friction", "flexible_friction", "contact"))
     assert spec.flexible == isinstance(body, FlexibleBody)
 
 
 def test_every_entry_names_its_kernels_and_columns():
     from fastrock.spectrum import SPECTRUM_COLUMNS
-    assert set(registry.MODELS) == {"rigid", "rigid_wall", "rigid_friction", "flexible", "flexible_friction",
-                                    "two_spring", "switching", "linear_sdof"}
+    assert set(registry.MODELS) == {"rigid", "rigid_wall", "rigid_friction", "contact", "flexible",
+                                    "flexible_friction", "two_spring", "switching", "linear_sdof"}
     for m in registry.MODELS.values():
         mod = m.load()
         assert callable(getattr(mod, m.simulate_entry)) and callable(getattr(mod, m.sweep_entry))
@@ -66,7 +68,7 @@ def test_cli_and_toml_know_every_option_an_entry_names():
 
 
 @pytest.mark.parametrize("body,kw,match", [
-    (BLOCK, {"wall": Wall(gap=0.01), "friction": Friction(0.4)}, "wall= and friction= needs the contact core"),
+    (FLEX, {"wall": Wall(gap=0.01), "friction": Friction(0.4)}, "not available for FlexibleBody"),
     (FLEX, {"wall": Wall(gap=0.01)}, "not available for FlexibleBody"),
     (FLEX, {"foundation": LinearVibration(1e5)}, "RigidBlock only"),
     (BLOCK, {"foundation": LinearVibration(1e5), "friction": Friction(0.3)}, "holds? the base horizontally"),

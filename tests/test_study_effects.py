@@ -60,8 +60,10 @@ def test_toml_variants_take_friction_and_a_foundation(tmp_path):
     bad = dict(data, variants=[{"friction": {"mu": 0.4}}])
     with pytest.raises(StudyError, match="variants\\[0\\]"):
         Study.from_dict(bad, base=tmp_path).prepare()
-    bad = dict(data, variants=[{"friction": {"mu_s": 0.4}, "wall": 0.01}])
-    with pytest.raises(StudyError, match="contact core"):
+    both = dict(data, variants=[{"friction": {"mu_s": 0.4}, "wall": 0.01}])
+    assert Study.from_dict(both, base=tmp_path).prepare().specs[0, 0].name == "contact"
+    bad = dict(data, variants=[{"friction": {"mu_s": 0.4}, "wall": 0.0}])
+    with pytest.raises(StudyError, match="gap = 0"):
         Study.from_dict(bad, base=tmp_path).prepare()
 
 

@@ -1,0 +1,118 @@
+"""Scenes that run the contact model (issue #13): a rigid block with a wall and friction, and
+free flight (Friction(lift_off="flight")), through the public entry points.  The kernel's own
+oracles (ballistic flight, landings, the SciPy reference) are in tests/test_contact_core.py."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from fastrock import Friction, FlexibleBody, Pulse, RigidBlock, Wall, overturning_spectrum, simulate
+from fastrock import registry
+
+BLOCK = RigidBlock.rectangle(0.2, 1.0)
+PULSES = [(amp, f, sign) for amp in (1.5, 3.0, 5.0) for f in (0.5, 2.0, 4.0) for sign in (1, -1)]
+
+
+def _pulse(amp, f, sign):
+    return Pulse(amp, f, sign=sign, amplitude_unit="g_tan_alpha")
+
+
+@pytest.mark.parametrize("kw", [
+    {"wall": Wall(gap=0.02), "friction": Friction(0.5)},
+    {"friction": Friction(math.inf, lift_off="flight")},
+    {"friction": Friction(0.4, lift_off="flight")},
+    {"wall": Wall(gap=0.02), "friction": Friction(math.inf, lift_off="flight")},
+])
+def test_these_scenes_run_the_contact_model(kw):
+    assert registry.select(BLOCK, **kw).name == "contact"
+
+
+@pytest.mark.parametrize("kw,match", [
+    ({"friction": Friction(0.4, lift_off="flight")}, "RigidBlock only"),
+    ({"friction": Friction(math.inf, lift_off="flight")}, "RigidBlock only"),
+])
+def test_flight_of_the_flexible_body_is_refused_with_a_reason(kw, match):
+    with pytest.raises(ValueError, match=match):
+        registry.select(FlexibleBody(0.2, 2.0, 10.0), **kw)
+
+
+@pytest.mark.parametrize("wall,match", [(Wall(gap=0.0), "gap = 0"), (Wall(gap=0.02, height=0.5), "lower than")])
+def test_walls_the_contact_model_lacks_are_refused(wall, match):
+    with pytest.raises(ValueError, match=match):
+        simulate(BLOCK, _pulse(2, 1, 1), wall=wall, friction=Friction(0.5))
+
+
+@pytest.mark.slow
+def test_infinite_friction_with_a_wall_is_the_wall_model():
+    """mu = inf (the pivot held, as the wall model's single-degree-of-freedom map assumes) gives the
+    wall model's answers, except where the block truly leaves the ground while it falls over.  A
+    large finite mu does not: at a tall-wall impact below alpha the held-pivot map needs the pivot
+    to pull on the ground, which no friction provides (the pivot lifts off instead)."""
+    for amp, f, sign in PULSES:
+        a = simulate(BLOCK, _pulse(amp, f, sign), wall=Wall(gap=0.02), friction=Friction(math.inf, lift_off="flight"))
+        b = simulate(BLOCK, _pulse(amp, f, sign), wall=Wall(gap=0.02))
+        assert a.kernel == "contact" and b.kernel == "rigid_wall"
+        if a.metrics["flights"]:
+            assert a.outcome in ("mode1", "mode2") and b.outcome in ("mode1", "mode2"), (amp, f, sign)
+            continue
+        assert a.status == b.status, (amp, f, sign, a.status, b.status)
+        assert a.metrics["max_rotation_ratio"] == pytest.approx(b.metrics["max_rotation_ratio"], rel=1e-6)
+
+
+@pytest.mark.slow
+def test_a_wall_out_of_reach_is_the_friction_model():
+    # out of reach: farther than the block's height plus how far it slides (0.71 m at most here; at
+    # gap 2.5 m the block sliding 0.53 m toward the wall while it falls does touch it)
+    fr = Friction(0.35, 0.3)
+    for amp, f, sign in PULSES:
+        a = simulate(BLOCK, _pulse(amp, f, sign), wall=Wall(gap=2 * BLOCK.h + 1.0), friction=fr)
+        b = simulate(BLOCK, _pulse(amp, f, sign), friction=fr)
+        assert a.kernel == "contact" and b.kernel == "rigid_friction"
+        assert a.outcome == b.outcome, (amp, f, sign, a.status, b.status)
+        assert a.metrics["max_slide"] == pytest.approx(b.metrics["max_slide"], abs=1e-6)
+
+
+def test_frictionless_ground_slides_by_minus_the_ground_displacement():
+    """mu = 0: the block keeps still in space, so it slides by -(double integral of a_g) relative to
+    the ground until it reaches the wall."""
+    pulse = Pulse(0.3, 2.0, amplitude_unit="m/s2", frequency_unit="rad/s")
+    r = simulate(BLOCK, pulse, wall=Wall(gap=0.5), friction=Friction(0.0), duration=2.0)
+    h = r.history.drop_duplicates("t", keep="last")
+    t = h["t"].to_numpy()
+    exact = -0.3 / 2.0 ** 2 * (2.0 * t - np.sin(2.0 * t))         # -double integral of 0.3 sin(2t)
+    np.testing.assert_allclose(h["d"].to_numpy(), exact, atol=1e-7)
+    assert r.metrics["wall_impacts"] == 0 and r.metrics["impacts"] == 0
+
+
+def test_a_block_thrown_up_flies_and_lands():
+    up = Pulse(1.5, 12.0, amplitude_unit="g", frequency_unit="rad/s", sign=-1)
+    r = simulate(BLOCK, None, vertical=up, friction=Friction(math.inf, lift_off="flight"), duration=3.0)
+    assert r.kernel == "contact" and r.status == "safe:rest"
+    m = r.metrics
+    assert m["flights"] >= 1 and m["time_flight"] > 0.0 and m["max_jump"] > 0.0
+    # a flat throw: the CM rise is z; on a 0.1 ms grid its maximum is within g dt^2/8 of the apex
+    dense = simulate(BLOCK, None, vertical=up, friction=Friction(math.inf, lift_off="flight"), duration=3.0,
+                     t_eval=np.arange(0.0, 0.6, 1e-4))
+    assert dense.history["z"].max() == pytest.approx(m["max_jump"], abs=2e-8)
+    assert (dense.history["theta"] == 0.0).all()
+    # the rigid model cannot fly: it stops
+    assert simulate(BLOCK, None, vertical=up, duration=3.0).outcome == "flight"
+
+
+def test_a_spectrum_with_a_wall_and_friction():
+    df = overturning_spectrum(BLOCK, np.linspace(1, 5, 4), np.linspace(0.5, 4, 4), wall=Wall(gap=0.02),
+                              friction=Friction(0.6), progress=False)
+    assert df.attrs["kernel"] == "contact"
+    for col in ("max_slide", "residual_slide", "flights", "time_flight", "max_jump", "max_rotation_toward_wall"):
+        assert col in df
+    # the only failures are the explicit face contacts (the base slid to the wall)
+    failed = df["status"].str.startswith("failed")
+    assert (df.loc[failed, "status"] == "failed:face-contact").all()
+    assert (~failed).sum() >= 6
+    row = df[~failed].iloc[-1]
+    r = simulate(BLOCK, Pulse(row["amplitude"], 2 * math.pi * row["frequency_hz"], sign=int(row["sign"]),
+                              amplitude_unit="m/s2", frequency_unit="rad/s"),
+                 wall=Wall(gap=0.02), friction=Friction(0.6), early_exit=True, duration=row["time_end"])
+    assert r.status == row["status"]
