@@ -108,9 +108,13 @@ def contact_par(body: RigidBlock, friction, wall=None):
         if wall.height is not None and wall.height < 2.0 * h:
             raise ValueError("wall: a wall lower than the block (height < 2h) is not in the contact model "
                              "yet; run it without friction and flight (the wall model)")
+        if wall.friction != 0.0:
+            raise ValueError("wall: friction > 0 at the wall contact is not in the contact model yet "
+                             "(the wall is frictionless)")
         par[K.P_WALL_SIDE] = float(wall.side)
         par[K.P_E_W] = wall.restitution
         par[K.C_GAP] = wall.gap
+        par[K.C_MU_W] = wall.friction
     return par
 
 

@@ -105,7 +105,7 @@ class Scene:
         wall = None
         if "wall" in data:
             from .wall import Wall
-            wall = Wall(**_only(dict(data["wall"]), "wall", {"gap", "side", "height", "restitution"}))
+            wall = Wall(**_only(dict(data["wall"]), "wall", {"gap", "side", "height", "restitution", "friction"}))
         friction = None
         if "friction" in data:
             from .friction import Friction

@@ -282,7 +282,7 @@ class Study:
             if isinstance(v.get("wall"), dict):
                 from .wall import Wall
                 v["wall"] = Wall(**_only(dict(v["wall"]), "wall",
-                                         {"gap", "side", "height", "restitution"}))
+                                         {"gap", "side", "height", "restitution", "friction"}))
             variants.append(v)
         solver = Solver(**_only(dict(data.get("solver", {})), "solver",
                                 {"rtol", "atol", "dt", "max_steps", "max_step",
@@ -517,7 +517,10 @@ def _canon(obj):
     """JSON-able canonical form (floats kept exact by repr)."""
     if dataclasses.is_dataclass(obj):
         d = {"__type__": type(obj).__name__}
-        d.update({f.name: _canon(getattr(obj, f.name)) for f in dataclasses.fields(obj)})
+        # a field marked hash_default (added after studies were saved) counts only when it is set,
+        # so the studies saved before it keep their hash and resume
+        d.update({f.name: _canon(getattr(obj, f.name)) for f in dataclasses.fields(obj)
+                  if not (f.metadata.get("hash_default") and getattr(obj, f.name) == f.default)})
         return d
     if isinstance(obj, dict):
         return {str(k): _canon(v) for k, v in sorted(obj.items())}

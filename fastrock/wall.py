@@ -7,7 +7,7 @@ a wall (tall elastic wall, gaps of 1 and 10 cm).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from . import _validate as V
 
@@ -37,6 +37,10 @@ class Wall:
         (a ground impact, a wall impact and a second ground impact in quick
         succession): pass ``restitution = e**2 * e_w`` at d = 0 for a model
         continuous in d.
+    friction : float
+        Coulomb coefficient mu_w of the wall contact, >= 0.  Default 0
+        (frictionless); only 0 is modelled so far, a positive value is
+        refused where the scene runs.
 
     Notes
     -----
@@ -59,6 +63,8 @@ class Wall:
     side: int = -1
     height: float | None = None
     restitution: float = 1.0
+    # a field added after studies were hashed: left out of a study's hash at its default
+    friction: float = field(default=0.0, metadata={"hash_default": True})
 
     def __post_init__(self):
         object.__setattr__(self, "gap", V.non_negative("gap", self.gap))
@@ -69,6 +75,7 @@ class Wall:
             object.__setattr__(self, "height", V.positive("height", self.height))
         object.__setattr__(self, "restitution",
                            V.in_closed("restitution", self.restitution, 0.0, 1.0))
+        object.__setattr__(self, "friction", V.non_negative("friction", self.friction))
 
     @property
     def toward_sign(self):
@@ -122,6 +129,9 @@ class Wall:
     def fill_par(self, par, body):
         """Write the wall entries of the rigid kernel's parameter vector."""
         from fastrock.kernels import layout as K
+        if self.friction != 0.0:
+            raise ValueError("wall: friction > 0 at the wall contact is not modelled yet (the wall is "
+                             "frictionless)")
         par[K.P_WALL_SIDE] = float(self.side)
         par[K.P_THETA_W] = self.limit_angle(body)
         par[K.P_E_W] = self.restitution

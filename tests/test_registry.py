@@ -225,3 +225,12 @@ def test_a_vertical_record_must_match_the_horizontal_one():
     by_hand = SampledMotion(np.interp(t, 2 * rec.dt * np.arange(780), 0.3 * rec.acc[::2], right=0.0), rec.dt)
     ref = simulate(BLOCK, h, vertical=by_hand, duration=3.0)
     np.testing.assert_equal(r.metrics, ref.metrics)   # NaN equals NaN
+
+
+def test_wall_friction_is_a_named_option_refused_until_modelled():
+    assert Wall(gap=0.01).friction == 0.0
+    with pytest.raises(ValueError, match="friction must be >= 0"):
+        Wall(gap=0.01, friction=-0.1)
+    for kw in ({}, {"friction": Friction(0.5)}):
+        with pytest.raises(ValueError, match="wall: friction > 0"):
+            simulate(BLOCK, Pulse(2.0, 1.0, amplitude_unit="g_tan_alpha"), wall=Wall(gap=0.01, friction=0.3), **kw)

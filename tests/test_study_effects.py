@@ -79,3 +79,10 @@ def test_a_wall_only_study_keeps_its_hash(record):
            "t_after": repr(prep.t_after), "early_exit": prep.early_exit}
     before = hashlib.sha256(json.dumps(doc, sort_keys=True, separators=(",", ":")).encode()).hexdigest()
     assert _study_hash(prep) == before
+
+
+def test_a_wall_field_added_later_leaves_saved_hashes_alone():
+    # the canonical form of a wall as studies hashed it before Wall.friction existed
+    assert _canon(Wall(0.01)) == {"__type__": "Wall", "gap": "0.01", "side": -1, "height": None,
+                                  "restitution": "1.0"}
+    assert _canon(Wall(0.01, friction=0.2))["friction"] == "0.2"
