@@ -20,6 +20,35 @@ Events (g > 0 admissible; ids E_*):
   SLIDE_ROCK  E_IMPACT, E_OVERTURN, E_SLIP_STICK stick sigma*d', E_LIFT_OFF N,
               E_PEAK, E_PASS_ALPHA
   SLIDE       E_SLIP_STICK stick sigma*d', E_LIFT_OFF flight G
+  ROCK, jammed (D_AUX = 1, below): E_SLIP_STICK the jam's end, E_LIFT_OFF off
+
+Contact mode at zero slip velocity (``pick_rocking``).  With the corner's
+contact accelerations a = a0 + W (F, N) (W the positive definite inverse
+mass matrix of the corner, a0 the free accelerations), the stick forces
+(F_s, N_s) = -W^-1 a0 and, for a slip toward sigma (F = -mu_k sigma N),
+D(sigma) = i_G + X (X + mu_k sigma Y) (= i_G (w22 - mu_k sigma w12)),
+A = G - Y theta'^2 (= -a_n0, > 0: the free corner is pressed into the
+ground), one finds N_slip = A i_G / D(sigma) and, for sigma1 = -sgn F_s,
+
+    sigma1 a_t = det W (|F_s| - mu_k N_s) / D(sigma1) * i_G.
+
+So when stick fails (|F_s| > mu_s N_s >= mu_k N_s or N_s < 0) the slip
+toward sigma1 is consistent (N >= 0, slip not reversed) iff D(sigma1) > 0
+and A >= 0, whatever the rounding of the computed slip acceleration (which
+is 0 at the slip onset); flight (F = N = 0) is consistent iff A <= 0.  At a
+slip onset from stick (N_s > 0, F_s = -sigma1 mu_s N_s), A = w12 F_s + w22
+N_s = N_s (w22 - mu_s sigma1 w12) <= N_s D(sigma1) / i_G because mu_k <=
+mu_s, so D(sigma1) < 0 (Painleve: mu large) implies A < 0: the block lifts
+off, and that is the only consistent mode (the slip toward -sigma1 has
+D = 2 i_G w22 - D(sigma1) > 0 and so N < 0).  With no consistent mode
+(A > 0 and D(sigma1) <= 0, Painleve's non-existence) the pivot is held as
+with mu = inf (a jam, the impulsive-limit friction of kernels/contact.py)
+until stick, slip or flight becomes consistent.  While slipping, N = A i_G / D reaches 0
+either with A <= 0 (lift-off) or with A > 0 through D = 0 (Painleve's
+dynamic jam): a tangential impact without collision then stops the slip
+(Darboux-Keller / Routh from v_n = 0: the corner slips until v_t = 0, then
+sticks while v_n returns to 0, so the result is the plastic stick impulse,
+with P_n > 0; angular momentum about the corner is conserved).
 """
 import math
 
@@ -29,7 +58,7 @@ from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
 from .hybrid import (book_time, check_energy, final_status, init_metrics,
                      integrate_hybrid, log_event, sweep_rows)
-from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
+from .layout import (D_AUX, D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_IMPACT, EV_REST, EV_SLIP, EV_STICK, EV_UPLIFT, FLIGHT,
                      MODE_REST, MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK,
                      M_IMPACTS, M_MAX_SLIDE, M_N_STICK_SLIP, M_RESIDUAL_SLIDE,
@@ -127,6 +156,14 @@ def event(k, t, y, par, disc, hdr, smp):
     if k == E_PASS_ALPHA:
         return par[P_ALPHA] - s * y[0], -s * y[1], False
     if mode == MODE_ROCK:
+        if disc[D_AUX] == 1:
+            # jam (module docstring): ends when stick, the slip toward
+            # sigma1 or flight becomes consistent; N is not checked
+            if k == E_SLIP_STICK:
+                g, _a, _b, _c = jam_margin(t, y, s, par, hdr, smp)
+                return g, 0.0, True
+            if k == E_LIFT_OFF:
+                return np.inf, 0.0, True
         tdd, F, N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
         if k == E_SLIP_STICK:
             # rate by a one-sided difference: F and N depend on a_g, theta''
@@ -165,6 +202,111 @@ def set_mode(disc, mode, s, sigma):
     disc[D_STATIC] = 1 if mode == MODE_REST else 0
     disc[D_PIVOT] = s
     disc[D_SLIP_DIR] = sigma
+    disc[D_AUX] = 0
+
+
+# outcomes of pick_rocking
+PICK_ROCK = 0
+PICK_SLIP = 1
+PICK_FLIGHT = 2
+PICK_JAM = 3
+
+
+@jit
+def normal_margins(t, theta, dtheta, s, sigma, par, hdr, smp):
+    """(A, D): A = G - Y theta'^2, the normal force the corner needs per
+    unit mass when nothing else acts (> 0: the free corner is pressed into
+    the ground; flight is consistent iff A <= 0), and D = i_G + X (X + mu_k
+    sigma Y), the slip toward sigma's denominator (N_slip = A i_G / D;
+    D <= 0 is Painleve's case).  See the module docstring."""
+    _ag, av = ground(t, hdr, smp)
+    X, Y = offsets(theta, s, par)
+    A = par[P_G] + av - Y * dtheta * dtheta
+    D = par[Q_IG] + X * (X + par[Q_MU_K] * sigma * Y)
+    return A, D
+
+
+@jit
+def pick_rocking(t, y, s, par, hdr, smp, allow_stick):
+    """Contact mode of the corner s at zero slip velocity (module docstring):
+    stick (if allowed: a slip onset has left the cone), slip toward sigma1 =
+    -sgn F_s, slip toward -sigma1, flight, else a jam.  Returns (PICK_*,
+    sigma).  Every mode returned is consistent (N >= 0, slip not reversed,
+    free corner not pressed) by the signs of A and D alone, so the rounding
+    of a computed slip acceleration (0 at a slip onset) cannot make the
+    next phase end at once."""
+    _tdd, F, N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
+    mu_k = par[Q_MU_K]
+    if allow_stick and N >= 0.0 and abs(F) <= par[Q_MU_S] * N:
+        return PICK_ROCK, 0
+    sig1 = -1 if F > 0.0 else 1
+    A, D1 = normal_margins(t, y[0], y[1], s, sig1, par, hdr, smp)
+    if D1 > 0.0 and A >= 0.0:
+        return PICK_SLIP, sig1
+    _A, D2 = normal_margins(t, y[0], y[1], s, -sig1, par, hdr, smp)
+    # toward -sigma1: N = A i_G / D2 >= 0 and -sigma1 a_t proportional to
+    # -(|F_s| + mu_k N_s) / D2 >= 0
+    if D2 != 0.0 and A * D2 >= 0.0 and (abs(F) + mu_k * N) * D2 <= 0.0:
+        return PICK_SLIP, -sig1
+    if A <= 0.0:
+        return PICK_FLIGHT, 0
+    return PICK_JAM, 0
+
+
+@jit
+def jam_margin(t, y, s, par, hdr, smp):
+    """> 0 while a jam lasts: stick inadmissible (|F| > mu_s N), the slip
+    toward sigma1 inconsistent (D(sigma1) <= 0) and flight inconsistent
+    (A > 0).  Returns (margin, its three parts)."""
+    _tdd, F, N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
+    sig1 = -1 if F > 0.0 else 1
+    A, D1 = normal_margins(t, y[0], y[1], s, sig1, par, hdr, smp)
+    c_stick = abs(F) - par[Q_MU_S] * N
+    c_slip = -(par[P_G] * D1 / par[Q_IG])
+    return min(c_stick, c_slip, A), c_stick, c_slip, A
+
+
+@jit
+def apply_pick(code, sig, t, y, s, disc, met, log, cnt, count_slip):
+    """Enter the mode chosen by pick_rocking on corner s."""
+    if code == PICK_ROCK:
+        set_mode(disc, MODE_ROCK, s, 0)
+        return RUNNING
+    if code == PICK_SLIP:
+        set_mode(disc, MODE_SLIDE_ROCK, s, sig)
+        if count_slip:
+            met[M_N_STICK_SLIP] += 1
+            log_event(log, cnt, t, EV_SLIP, y[1], y[1], y[0], sig)
+        return RUNNING
+    if code == PICK_FLIGHT:
+        log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], y[0], s)
+        return FLIGHT
+    # jam: the pivot held as with mu = inf (logged as a stick)
+    set_mode(disc, MODE_ROCK, s, 0)
+    disc[D_AUX] = 1
+    log_event(log, cnt, t, EV_STICK, y[1], y[1], y[0], s)
+    return RUNNING
+
+
+@jit
+def kinetic_at(theta, w, v, s, par):
+    """Kinetic energy per unit mass rocking at w on pivot s at any theta with
+    base slip velocity v: v_G = (v + Y w, -X w)."""
+    X, Y = offsets(theta, s, par)
+    vx = v + Y * w
+    return 0.5 * (vx * vx + X * X * w * w + par[Q_IG] * w * w)
+
+
+@jit
+def stop_slip(t, y, s, par, met):
+    """Tangential impact without collision at the slipping corner s (module
+    docstring): the plastic stick impulse, angular momentum about the corner
+    conserved, i_0 theta'+ = i_0 theta'- + Y d'-, d'+ = 0 (dissipative)."""
+    X, Y = offsets(y[0], s, par)
+    before = kinetic_at(y[0], y[1], y[3], s, par)
+    y[1] = y[1] + Y * y[3] / (par[Q_IG] + X * X + Y * Y)
+    y[3] = 0.0
+    check_energy(before, kinetic_at(y[0], y[1], 0.0, s, par), met)
 
 
 @jit
@@ -354,13 +496,28 @@ def stick(t, y, par, disc, hdr, smp, met, log, cnt):
         log_event(log, cnt, t, EV_STICK, 0.0, 0.0, 0.0, 0)
         return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
     s = disc[D_PIVOT]
-    _tdd, F, N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
     log_event(log, cnt, t, EV_STICK, y[1], y[1], y[0], s)
-    if abs(F) <= par[Q_MU_S] * N:
-        set_mode(disc, MODE_ROCK, s, 0)
-    else:
-        set_mode(disc, MODE_SLIDE_ROCK, s, -1 if F > 0.0 else 1)
-    return RUNNING
+    code, sig = pick_rocking(t, y, s, par, hdr, smp, True)
+    return apply_pick(code, sig, t, y, s, disc, met, log, cnt, False)
+
+
+@jit
+def end_jam(t, y, s, par, disc, hdr, smp, met, log, cnt):
+    """The jam's margin reached 0: the mode that became consistent (by the
+    margin's own parts where the pick still finds none, so that the state
+    always changes)."""
+    code, sig = pick_rocking(t, y, s, par, hdr, smp, True)
+    if code == PICK_JAM:
+        _g, c_stick, c_slip, A = jam_margin(t, y, s, par, hdr, smp)
+        if A <= min(c_stick, c_slip):
+            code = PICK_FLIGHT
+        elif c_stick <= c_slip:
+            code = PICK_ROCK
+        else:
+            _tdd, F, _N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
+            code = PICK_SLIP
+            sig = -1 if F > 0.0 else 1
+    return apply_pick(code, sig, t, y, s, disc, met, log, cnt, True)
 
 
 @jit
@@ -378,17 +535,30 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return RUNNING
     book_time(t, disc, met)
     track_slide(y[2], met)
+    # the state at an event counts (a flight ends the run here)
+    track_rotation(y[0], met)
     if k == E_LIFT_OFF:
+        if mode == MODE_SLIDE_ROCK:
+            A, _D = normal_margins(t, y[0], y[1], s, disc[D_SLIP_DIR], par,
+                                   hdr, smp)
+            if A > 0.0:
+                # N = A i_G / D reached 0 through D = 0 with the corner
+                # pressed: Painleve's dynamic jam stops the slip
+                stop_slip(t, y, s, par, met)
+                met[M_N_STICK_SLIP] += 1
+                log_event(log, cnt, t, EV_STICK, y[1], y[1], y[0], s)
+                code, sig = pick_rocking(t, y, s, par, hdr, smp, True)
+                return apply_pick(code, sig, t, y, s, disc, met, log, cnt,
+                                  True)
         log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], y[0], s)
         return FLIGHT
     if k == E_SLIP_STICK:
         if mode == MODE_ROCK:
-            _tdd, F, _N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
-            sig = -1 if F > 0.0 else 1
-            set_mode(disc, MODE_SLIDE_ROCK, s, sig)
-            met[M_N_STICK_SLIP] += 1
-            log_event(log, cnt, t, EV_SLIP, y[1], y[1], y[0], sig)
-            return RUNNING
+            if disc[D_AUX] == 1:
+                return end_jam(t, y, s, par, disc, hdr, smp, met, log, cnt)
+            # slip onset: stick has left its cone
+            code, sig = pick_rocking(t, y, s, par, hdr, smp, False)
+            return apply_pick(code, sig, t, y, s, disc, met, log, cnt, True)
         return stick(t, y, par, disc, hdr, smp, met, log, cnt)
     if k == E_OVERTURN:
         return overturned(t, y[0], y[1], s, met, log, cnt)
