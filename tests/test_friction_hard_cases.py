@@ -15,8 +15,9 @@ import fastrock as fr
 import hardcases as H
 from fastrock import Friction, Pulse, RigidBlock
 from fastrock.bodies import G_STANDARD as G0
+from fastrock.models import rigid_friction_par
 from fastrock.solver import Solver
-from test_friction import HF_BODY, HF_GRID, SLIDER, definite, one_sine
+from test_friction import HF_BODY, HF_GRID, SLIDER, definite, header, one_sine
 
 STATE = ("theta", "theta_dot", "d", "d_dot")
 
@@ -179,3 +180,215 @@ def test_long_record_90s_at_dt_0005(mu, status):
     H.definite(res, 2_000_000, STATE)
     assert res.status == status and res.metrics["stick_slip"] > 0 and res.metrics["max_slide"] > 0
     assert res.metrics["time_end"] == pytest.approx(rec.end_time(body) + 2.0, abs=1e-9)
+
+
+# ---------------------------------------------------------------------------------------------
+# issue #14: Painleve at the slip onset, mu = 1e6 against the frictionless block, flights
+# ---------------------------------------------------------------------------------------------
+# The contact mode at zero slip velocity is decided by two signs (kernels/friction.py, module
+# docstring): A = G - Y theta'^2 (> 0: the free corner is pressed into the ground; flight is
+# consistent iff A <= 0) and the slip denominator D(sigma) = i_G + X (X + mu_k sigma Y)
+# (N_slip = A i_G / D; D <= 0 is Painleve's case).  The helpers below recompute the stick forces
+# and A, D in numpy from the history, independently of the kernel's functions.
+def block_par(body):
+    from fastrock.kernels import friction as FK
+    par = rigid_friction_par(body, Friction(1.0))
+    return par[FK.Q_B], par[FK.Q_H], par[FK.Q_IG]
+
+
+def stick_forces(body, theta, w, s, ag, G=G0):
+    """theta'', F, N, A per unit mass of the block rocking without slip on pivot s (arrays),
+    from the three equations of kernels/friction.py's docstring with d'' = 0."""
+    b, h, iG = block_par(body)
+    X = -s * b * np.cos(theta) + h * np.sin(theta)
+    Y = s * b * np.sin(theta) + h * np.cos(theta)
+    tdd = (G * X - ag * Y) / (iG + X * X + Y * Y)
+    F = ag + Y * tdd - X * w * w
+    N = G - X * tdd - Y * w * w
+    return tdd, F, N, G - Y * w * w, X, Y
+
+
+def slip_den(body, X, Y, sigma, mu_k):
+    _b, _h, iG = block_par(body)
+    return iG + X * (X + mu_k * sigma * Y)
+
+
+def fuzz_pulse(amp, freq, sign, kind):
+    return Pulse(amp, freq, sign, kind, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+
+
+def pivot_tension_time(body, r0, mu=1e6):
+    """First history time of a frictionless run at which its bilateral pivot needs more than
+    the cone of mu allows (|F| > mu N, in particular N < 0), and the last time before it
+    (inf, inf if never)."""
+    h = r0.history
+    t = h["t"].to_numpy()
+    s = h["pivot"].to_numpy()
+    rock = s != 0
+    _tdd, F, N, _A, _X, _Y = stick_forces(body, h["theta"].to_numpy(), h["theta_dot"].to_numpy(),
+                                          np.where(rock, s, 1), h["a_g"].to_numpy())
+    bad = rock & (np.abs(F) > mu * N)
+    if not bad.any():
+        return np.inf, np.inf, float(np.min(np.where(rock, N, np.inf)))
+    i = int(np.argmax(bad))
+    return float(t[i]), float(t[i - 1]), float(np.min(np.where(rock, N, np.inf)))
+
+
+# fuzz cells that ended failed:transition-loop (bench/README.md "Fuzz baseline (issue #14)"):
+# a slip onset while rocking with D(sigma1) < 0 looped between stick and slip at one instant
+PAINLEVE_CELLS = [
+    ("friction:2026:16", RigidBlock.rectangle(0.9274961789134943, 2.364259092419135), 1.9917015435106786,
+     "half-sine", 34.61312773729814, [4.1164419358381785, 1.5356288742822313, 3.654858729425721,
+                                       8.834531489155783], Solver(rtol=1.3313470038156705e-09)),
+    ("friction:2026:33", RigidBlock(0.318406937718058, 0.669267421913309), 1.8693227740950336,
+     "one-cosine", 31.29451911418186, [0.12161102940559598, 6.376230028855794],
+     Solver(rtol=1.1001049814176168e-09)),
+    ("friction:2026:45", RigidBlock.rectangle(0.4365751414621545, 0.3759312322697188),
+     1.8909817552635684, "half-sine", 5.379696156406094, [1.9127868720666663, 1.2397166387489453],
+     None),
+]
+
+
+@pytest.mark.parametrize("cell", PAINLEVE_CELLS, ids=[c[0] for c in PAINLEVE_CELLS])
+@pytest.mark.parametrize("sign", [1, -1])
+def test_painleve_slip_onset_lifts_off(cell, sign):
+    """Formerly failed:transition-loop (200 stick/slip transitions at one instant).  At the slip
+    onset from stick (N_s > 0, |F_s| = mu_s N_s) the slip toward sigma1 = -sgn F_s has D < 0
+    (Painleve); then A < 0 necessarily (kernels/friction.py), so flight is the one consistent
+    mode and the run ends "flight" right there (lift_off="stop").  Checked independently: at
+    the flight event the stick forces are on or past the cone, N_s > 0, D(sigma1) < 0, A < 0;
+    the mirror image gives the same run."""
+    name, body, mu, kind, amp, freqs, solver = cell
+    for f in freqs:
+        if solver is None:     # the fuzz's fixed step for this batch
+            solver = Solver(dt=2 * math.pi / (max(freqs) * body.p) / 206.36213098006073)
+        pulse = fuzz_pulse(amp, f, sign, kind)
+        r = fr.simulate(body, pulse, friction=Friction(mu), solver=solver, t_after=5.0)
+        H.definite(r, 200_000, STATE)
+        assert r.status == "flight", (name, f, r.status)
+        ev = r.events
+        assert ev["event"].iloc[-1] == "flight" and r.metrics["stick_slip"] == 0
+        t, th, w, s = ev[["t", "theta", "velocity_before", "pivot"]].iloc[-1]
+        ag = float(np.interp(t, r.history["t"], r.history["a_g"]))
+        _tdd, F, N, A, X, Y = stick_forces(body, th, w, s, ag)
+        sig1 = -1.0 if F > 0 else 1.0
+        assert N > 0 and abs(F) >= mu * N * (1 - 1e-9), (F, N)
+        assert slip_den(body, X, Y, sig1, mu) < 0 and A < 0
+        # the flight's rotation counts in the maximum
+        assert r.metrics["max_rotation"] >= abs(th)
+
+
+MU_INF_CELLS = [
+    # friction:2026:1 (b/h 0.57, given e): Friction(1e6) looped where the frictionless block
+    # overturns (mode 2); the frictionless pivot needs N < 0 from t = 1.3673 s: flight
+    ("friction:2026:1", RigidBlock.rectangle(8.687316091593832, 15.293601937155227, e=0.46691214804113146),
+     "half-sine", 34.656634552869505, 0.2527555696994872, 1.6556336739813294e-08, "flight"),
+    # friction:4:0 (b/h 1.13): "slide" with a larger max rotation; the pivot needs N < 0 from
+    # t = 0.0288 s with the free corner pressed (A > 0): the slip with N ~ 1e-6 is the one
+    # consistent mode (the friction force stays finite as mu -> inf)
+    ("friction:4:0", RigidBlock.rectangle(0.055627905965677064, 0.04943929744764557), "one-cosine",
+     3.240755767032052, 7.104554243489959, 6.22404523893308e-05, "slip"),
+    ("friction:2026:50", RigidBlock.rectangle(6.846812858973483, 7.716918828647167), "one-sine",
+     4.654731080495459, 15.143646652268837, 3.403325878718769e-10, "slip"),
+]
+
+
+@pytest.mark.parametrize("cell", MU_INF_CELLS, ids=[c[0] for c in MU_INF_CELLS])
+def test_mu_1e6_follows_rigid_until_the_pivot_needs_tension(cell):
+    """The fuzz's violated:mu_inf cells.  Friction(1e6) is the frictionless block (kernels/
+    rigid.py) as long as that block's pivot force stays inside the cone |F| <= 1e6 N; in these
+    cells the frictionless block needs tension at the pivot (N_s < 0, down to -0.8 g), which no
+    unilateral contact gives, so the runs must part there and only there: the friction run's
+    first slip or flight falls between the last history row of the frictionless run inside the
+    cone and the first outside it, the rotation at that instant is the frictionless one to 1e-6
+    relative, and the mode taken is the consistent one (flight where A < 0; slip where A > 0 and
+    D(sigma1) > 0).  Formerly: failed:transition-loop, or a slip from a loop-free but unchecked
+    pick."""
+    name, body, kind, amp, f, rtol, mode = cell
+    pulse = fuzz_pulse(amp, f, 1, kind)
+    T = pulse.end_time(body) + 2.0
+    r0 = fr.simulate(body, pulse, rtol=1e-11, duration=T)
+    r1 = fr.simulate(body, pulse, friction=Friction(1e6, slide_tolerance=1e-6), rtol=1e-11, duration=T)
+    H.definite(r1, 200_000, STATE)
+    t_bad, t_ok, n_min = pivot_tension_time(body, r0)
+    assert n_min < -0.1 * G0 and np.isfinite(t_bad)
+    ev = r1.events
+    part = ev[ev["event"].isin(["slip", "flight"])].iloc[0]
+    assert part["event"] == ("flight" if mode == "flight" else "slip")
+    assert t_ok - 1e-9 <= part["t"] <= t_bad + 1e-9, (t_ok, part["t"], t_bad)
+    # the frictionless rotation at that instant (dense output)
+    th0 = fr.simulate(body, pulse, rtol=1e-11, duration=T, t_eval=[part["t"]]).history["theta"].iloc[0]
+    assert part["theta"] == pytest.approx(th0, rel=1e-6, abs=1e-9 * body.alpha)
+    # independent check of the mode at the parting instant (state from the friction history)
+    h1 = r1.history
+    row = h1[h1["t"] == part["t"]].iloc[0]
+    _tdd, F, N, A, X, Y = stick_forces(body, row["theta"], row["theta_dot"], int(row["pivot"]), row["a_g"])
+    sig1 = -1.0 if F > 0 else 1.0
+    if mode == "flight":
+        assert A < 0
+    else:
+        assert A > 0 and slip_den(body, X, Y, sig1, 1e6) > 0 and part["pivot"] == sig1
+        assert r1.metrics["max_slide"] > 1e-3 * body.h     # a finite slip, as mu -> inf
+
+
+def test_flight_rotation_counts_and_scales():
+    """friction:2026:11 (violated:scale): a run that ends in flight reported max|theta| without
+    the rotation at the flight (the last state), so scaled copies differed (0.2381 vs 0.2334 of
+    alpha, still 0.2593 vs 0.2560 at rtol 1e-11).  Now max_rotation includes it, and the length
+    scale k = 0.2084 (p / sqrt(k), slide tolerance and chatter thresholds scaled) gives the same
+    ratio to 1e-6."""
+    b, h, e = 0.06103631863941706, 0.15466571898457424, 0.27090245913269795
+    k = 0.20836970439744795
+    out = []
+    for scale in (1.0, k):
+        body = RigidBlock.rectangle(b * scale, h * scale, e=e)
+        ts = math.sqrt(scale)
+        r = fr.simulate(body, fuzz_pulse(32.6950079258959, 6.498731068858834, 1, "one-sine"),
+                        friction=Friction(1.847758575924349, 1.0831471414125566, slide_tolerance=1e-3 * scale),
+                        solver=Solver(rtol=1e-11, eps_t=1e-9 * ts, eps_omega=1e-9 / ts), t_after=10 * ts)
+        H.definite(r, 200_000, STATE)
+        assert r.status == "flight"
+        th_end = abs(r.events["theta"].iloc[-1])
+        assert r.metrics["max_rotation"] >= th_end
+        out.append(r.metrics["max_rotation_ratio"])
+    assert out[1] == pytest.approx(out[0], rel=1e-6)
+
+
+def test_mode_signs_match_slip_accelerations():
+    """The rule behind the pick (kernels/friction.py docstring), checked on the kernel's own
+    slip_rock at 6000 random states, both pivots and slip directions, mu up to 1e6: N_slip =
+    A i_G / D(sigma), and where stick fails (|F_s| > mu_k N_s) the slip toward sigma1 = -sgn F_s
+    runs forward (sigma1 d'' > 0) exactly when D(sigma1) > 0."""
+    from fastrock.kernels import friction as FK
+    rng = np.random.default_rng(14)
+    hdr_cache = {}
+    checked = painleve = 0
+    for _ in range(6000):
+        b = 10 ** rng.uniform(-2, 1)
+        h = b / math.tan(rng.uniform(0.02, 0.9))
+        body = RigidBlock.rectangle(b, h)
+        mu = 10 ** rng.uniform(-1, 6)
+        par = rigid_friction_par(body, Friction(mu))
+        ag = rng.uniform(-5, 5) * G0
+        key = round(ag, 12)
+        hdr = hdr_cache.setdefault(key, header(ag))
+        smp = np.zeros(1)
+        s = int(rng.choice([-1, 1]))
+        th = s * rng.uniform(0, body.alpha * 1.5)
+        w = rng.normal() * body.p * 1.5
+        _tdd, F, N, A, X, Y = stick_forces(body, th, w, s, ag)
+        for sig in (-1, 1):
+            _t2, dd, Ns = FK.slip_rock(1.0, th, w, s, sig, par, hdr, smp)
+            D = slip_den(body, X, Y, sig, mu)
+            b_, h_, iG = block_par(body)
+            assert Ns == pytest.approx(A * iG / D, rel=1e-8, abs=1e-12 * G0 * mu)
+        if abs(F) > 1.01 * mu * N:
+            sig1 = -1 if F > 0 else 1
+            _t2, dd, _Ns = FK.slip_rock(1.0, th, w, s, sig1, par, hdr, smp)
+            D1 = slip_den(body, X, Y, sig1, mu)
+            if abs(sig1 * dd) > 1e-9 * G0:
+                assert (sig1 * dd > 0) == (D1 > 0), (F, N, D1, dd)
+                checked += 1
+                painleve += D1 < 0
+    # measured: 3273 states with stick failing, 534 of them with D(sigma1) < 0
+    assert checked > 2000 and painleve > 300, (checked, painleve)
