@@ -160,6 +160,14 @@ CS_STICK = 1
 CS_SLIP_P = 2
 CS_SLIP_N = 3
 CS_FREE = 4       # frictionless: normal force only
+# the wall contact (slot 2) taken by the wall-side base corner instead of
+# the top corner: the face (or the lower corner) against the wall
+CS_WALL_BASE = 5
+# body point index of the wall-side base corner seen as a wall contact
+K_NEAR = 3
+# the wall-side base corner counts as at the wall below this gap [m]
+# (relative to the half-width)
+FACE_RTOL = 1e-6
 
 # ---- events ----------------------------------------------------------------
 K_IMPACT = 0
@@ -173,7 +181,8 @@ K_LAND0 = 7
 K_LAND1 = 8
 K_APEX = 9
 K_WALL = 10
-N_EVENTS = 11
+K_WALL_BASE = 11
+N_EVENTS = 12
 
 # a tangential contact velocity below this [m/s] counts as zero (stick test)
 V_TOL = 1e-12
@@ -188,11 +197,16 @@ JAM = 2
 # ---------------------------------------------------------------- geometry
 @jit
 def body_point(k, par):
-    """Body-frame coordinates of contact point k relative to the CM."""
+    """Body-frame coordinates of contact point k relative to the CM
+    (k = K_NEAR: the wall-side base corner, as a wall contact)."""
     if k == 0:
         return -par[C_B1], -par[C_H1]
     if k == 1:
         return par[C_B2], -par[C_H2]
+    if k == K_NEAR:
+        if par[P_WALL_SIDE] > 0.0:
+            return par[C_B2], -par[C_H2]
+        return -par[C_B1], -par[C_H1]
     if par[P_WALL_SIDE] > 0.0:
         return par[C_B2], par[C_HT2]
     return -par[C_B1], par[C_HT1]
@@ -233,7 +247,7 @@ def point_offset(k, theta, par):
 def point_kin(k, y, par):
     """(gap, normal velocity, tangential velocity) of contact point k; the
     gap is the height above the ground (k < 2) or the clear distance to the
-    wall (k = 2)."""
+    wall (k = 2: top corner, k = K_NEAR: wall-side base corner)."""
     th = y[0]
     om = y[1]
     hm = hmid(par)
@@ -312,7 +326,8 @@ def solve_targets(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
     N2, F2); ok is False for a singular system (e.g. both base corners
     sticking: REST is a static phase, never solved here).  ``tgt2`` is the
     target of the wall contact's normal row (impulse form: the post-impact
-    normal velocity -e_w v_n-).
+    normal velocity -e_w v_n-).  The wall contact is the top corner
+    (st2 = CS_FREE) or the wall-side base corner (st2 = CS_WALL_BASE).
     """
     iG = par[C_IG]
     c = math.cos(theta)
@@ -325,10 +340,11 @@ def solve_targets(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
         st = st0 if k == 0 else (st1 if k == 1 else st2)
         if st == CS_OPEN:
             continue
-        cx, cy = body_point(k, par)
+        kk = K_NEAR if (k == 2 and st == CS_WALL_BASE) else k
+        cx, cy = body_point(kk, par)
         rx = cx * c + cy * sn
         ry = -cx * sn + cy * c
-        nx, ny, tx, ty = frame(k, par)
+        nx, ny, tx, ty = frame(kk, par)
         jn2 = ry * nx - rx * ny
         jt2 = ry * tx - rx * ty
         m = 0.0
@@ -515,9 +531,48 @@ def wall_active(par):
 
 
 @jit
+def near_index(par):
+    """Index (0, 1) of the wall-side base corner."""
+    return 1 if par[P_WALL_SIDE] > 0.0 else 0
+
+
+@jit
+def approach_gap(kw, y, par):
+    """Wall gap of wall point kw (2 or K_NEAR) and its rate.  Unlike the
+    top corner's event (inf while it moves away) the gap is always
+    returned, so that a crossing inside a step whose end moves away again
+    (the slip reversing after a stick event, a rebound) is still seen
+    (grazing search); a phase that starts at the wall moving away is no
+    root (g0 <= 0 < g1)."""
+    if not wall_active(par):
+        return np.inf, 0.0
+    gap, vn, _vt = point_kin(kw, y, par)
+    return gap, vn
+
+
+@jit
 def event(k, t, y, par, disc, hdr, smp):
     mode = disc[D_MODE]
     s = disc[D_PIVOT]
+    if k == K_WALL_BASE:
+        # the wall-side base corner reaching the wall (flight; rocking or
+        # slide-rocking on the far corner); while it rests on the wall
+        # (ladder mode), the wall's normal force reaching 0
+        if mode == MODE_FLIGHT:
+            g, gd = approach_gap(K_NEAR, y, par)
+            return g, gd, True
+        if mode != MODE_ROCK and mode != MODE_SLIDE_ROCK:
+            return np.inf, 0.0, True
+        if disc[D_CS2] == CS_WALL_BASE:
+            acc = np.empty(3)
+            _ok, _N0, _F0, _N1, _F1, N2, _F2 = mode_solve(
+                t, y, par, disc[D_CS0], disc[D_CS1], disc[D_CS2], hdr, smp,
+                acc)
+            return N2, 0.0, True
+        if (1 if s > 0 else 0) == near_index(par):
+            return np.inf, 0.0, True
+        g, gd = approach_gap(K_NEAR, y, par)
+        return g, gd, True
     if mode == MODE_FLIGHT:
         if k == K_OVERTURN:
             sg = 1.0 if y[0] >= 0.0 else -1.0
@@ -571,7 +626,7 @@ def event(k, t, y, par, disc, hdr, smp):
     if k == K_STICK and mode != MODE_SLIDE_ROCK:
         return np.inf, 0.0, True
     if k == K_WALL:
-        if not wall_active(par):
+        if not wall_active(par) or disc[D_CS2] == CS_WALL_BASE:
             return np.inf, 0.0, True
         gap, vn, _vt = point_kin(2, y, par)
         if vn < 0.0:
@@ -628,9 +683,30 @@ def rest_margin(t, par, hdr, smp):
 
 
 @jit
+def face_rest_margin(t, par, hdr, smp):
+    """Flat on the ground with the face against the wall (face rest): the
+    wall (its force anywhere on the face, never pulling) and the ground
+    hold the block while G > 0 and either the d'Alembert force -a_g pushes
+    it toward the wall (q = -w a_g >= 0: any tipping toward the wall or
+    slide into it is blocked by the wall) or the free block would rest
+    anyway (``rest_margin``: no tipping away, friction holds).  Derivation:
+    equilibrium with N_near, N_far >= 0, |F| <= mu_s (N_near + N_far),
+    wall forces W_base, W_top >= 0 at the base and top of the face: with
+    q >= 0 the choice W_top = max(0, (q h - G b + 2 b N_far) / (2h)),
+    W_base = q - W_top, F = 0 is admissible; with q < 0 the wall force is
+    0 and the conditions are the free rest's."""
+    ag, av = ground(t, hdr, smp)
+    G = par[P_G] + av
+    q = -par[P_WALL_SIDE] * ag
+    return min(G, max(q, rest_margin(t, par, hdr, smp)))
+
+
+@jit
 def static_margin(t, y, par, disc, hdr, smp):
     if disc[D_MODE] == MODE_WALL_REST:
         return wall_rest_margin(t, y, par, disc, hdr, smp)
+    if disc[D_CS2] == CS_WALL_BASE:
+        return face_rest_margin(t, par, hdr, smp)
     return rest_margin(t, par, hdr, smp)
 
 
@@ -797,9 +873,20 @@ def stop_slip_impulsively(j, y, par):
 def pick_flat(t, y, par, disc, hdr, smp, met, log, cnt):
     """Both base corners on the ground, theta = theta' = 0 (rest, end of a
     slide phase, flat landing, chatter): pick REST, ROCK, SLIDE_ROCK,
-    SLIDE or FLIGHT by the mode solve (physics.md 4.2-4.3, 4.6)."""
+    SLIDE or FLIGHT by the mode solve (physics.md 4.2-4.3, 4.6).
+
+    With the face against the wall (the wall-side base corner at the
+    wall): a slip into the wall is stopped (plastic face, dissipative),
+    rocking on the wall-side corner is blocked (the face would enter the
+    wall), and the block rests on the ground and the wall (face rest, a
+    static phase ended by ``face_rest_margin``) unless it is pulled away
+    from the wall (then the free block's pick, which moves it away)."""
     _g, _vn, v = point_kin(0, y, par)
     if abs(v) <= V_TOL or not np.isfinite(par[C_MU_K]):
+        v = 0.0
+    at_wall = near_at_wall(y, par)
+    w = par[P_WALL_SIDE]
+    if at_wall and w * v > 0.0:
         v = 0.0
     project_flat(y, v == 0.0)
     ag, av = ground(t, hdr, smp)
@@ -816,6 +903,8 @@ def pick_flat(t, y, par, disc, hdr, smp, met, log, cnt):
             set_contacts(disc, st, st, CS_OPEN)
             return RUNNING
         for s in (sig, -sig):
+            if at_wall and s == w:
+                continue
             j = 1 if s > 0 else 0
             ok, N0, _F0, N1, _F1, _N2, _F2 = mode_solve(
                 t, y, par, st if j == 0 else CS_OPEN,
@@ -827,8 +916,20 @@ def pick_flat(t, y, par, disc, hdr, smp, met, log, cnt):
                 mark_uplift(t, met)
                 log_event(log, cnt, t, EV_UPLIFT, 0.0, 0.0, 0.0, s)
                 return RUNNING
-        log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sig)
-        return FAIL_INCONSISTENT
+        if not at_wall:
+            log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sig)
+            return FAIL_INCONSISTENT
+        # sliding away from the wall with its face at it, tipping toward
+        # the wall demanded (blocked by the wall): no consistent mode; the
+        # slip is stopped (plastic tangential impulse, dissipative)
+        y[3] = 0.0
+        v = 0.0
+        log_event(log, cnt, t, EV_STICK, 0.0, 0.0, 0.0, 0)
+    if at_wall and face_rest_margin(t, par, hdr, smp) >= 0.0:
+        y[2] = w * par[C_GAP]
+        set_contacts(disc, CS_STICK, CS_STICK, CS_WALL_BASE)
+        disc[D_WALL_REST] = 1
+        return RUNNING
     if rest_margin(t, par, hdr, smp) >= 0.0:
         set_contacts(disc, CS_STICK, CS_STICK, CS_OPEN)
         return RUNNING
@@ -881,6 +982,17 @@ def pick_flat(t, y, par, disc, hdr, smp, met, log, cnt):
 
 
 @jit
+def near_at_wall(y, par):
+    """The wall-side base corner is at the wall (to FACE_RTOL of the
+    half-width)."""
+    if not wall_active(par):
+        return False
+    bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
+    gap, _vn, _vt = point_kin(K_NEAR, y, par)
+    return gap <= FACE_RTOL * bw
+
+
+@jit
 def set_single(j, st, disc):
     """Base corner j alone on the ground in contact state st."""
     set_contacts(disc, st if j == 0 else CS_OPEN, st if j == 1 else CS_OPEN,
@@ -890,6 +1002,123 @@ def set_single(j, st, disc):
 
 @jit
 def pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, forbid_stick):
+    """``pick_single_ground``, or ``pick_wall_corner`` when j is the far
+    corner and the wall-side base corner is at the wall."""
+    if j != near_index(par) and near_at_wall(y, par):
+        return pick_wall_corner(j, t, y, par, disc, hdr, smp, met, log, cnt,
+                                forbid_stick)
+    return pick_single_ground(j, t, y, par, disc, hdr, smp, met, log, cnt,
+                              forbid_stick)
+
+
+@jit
+def into_wall(t, y, par, disc, hdr, smp):
+    """In the current mode the wall-side base corner (on the wall) moves or
+    accelerates into the wall."""
+    _g, vn, _vt = point_kin(K_NEAR, y, par)
+    scale_v = abs(y[1]) * (par[C_B1] + par[C_H1]) + abs(y[3]) + abs(y[5])
+    if vn < -1e-9 * scale_v:
+        return True
+    if vn > 1e-9 * scale_v:
+        return False
+    acc = np.empty(3)
+    if disc[D_MODE] == MODE_FLIGHT:
+        bx, by, bw = free_acc(t, par, hdr, smp)
+        acc[0] = bx
+        acc[1] = by
+        acc[2] = bw
+    elif disc[D_STATIC] == 1:
+        return False
+    else:
+        mode_solve(t, y, par, disc[D_CS0], disc[D_CS1], disc[D_CS2], hdr,
+                   smp, acc)
+    an, _at = contact_acc(K_NEAR, y, par, acc)
+    return an < -1e-12 * (par[P_G] + abs(acc[0]) + abs(acc[1]))
+
+
+@jit
+def pick_wall_corner(j, t, y, par, disc, hdr, smp, met, log, cnt,
+                     forbid_stick):
+    """Far base corner j on the ground, the wall-side base corner at the
+    wall (block tilted away from the wall): the ground-only pick when it
+    keeps the corner off the wall; else the wall contact closes: pivot
+    sticking (the block wedged between ground and wall: a static phase,
+    MODE_WALL_REST, any remaining rotation stopped, dissipative) or
+    slipping (the 'ladder': the corner slides along the wall, SLIDE_ROCK
+    with the wall contact CS_WALL_BASE, ended by the wall's normal force
+    reaching 0, the pivot sticking, or theta reaching 0: a face impact)."""
+    y0 = y.copy()
+    d0 = disc.copy()
+    m0 = met.copy()
+    c0 = cnt.copy()
+    st = pick_single_ground(j, t, y, par, disc, hdr, smp, met, log, cnt,
+                            forbid_stick)
+    if st != RUNNING or not into_wall(t, y, par, disc, hdr, smp):
+        return st
+    y[:] = y0
+    disc[:] = d0
+    met[:] = m0
+    cnt[:] = c0
+    project_single(j, y, par, False)
+    _g, vnw, _vt = point_kin(K_NEAR, y, par)
+    _g, _vn, vt = point_kin(j, y, par)
+    if abs(vt) <= V_TOL or not np.isfinite(par[C_MU_K]):
+        y[3] -= vt
+        vt = 0.0
+    acc = np.empty(3)
+    mu = par[C_MU_S]
+    if vt != 0.0:
+        sig = sign_of(vt)
+        st = slip_state(sig)
+        ok, N0, _F0, N1, _F1, N2, _F2 = mode_solve(
+            t, y, par, st if j == 0 else CS_OPEN, st if j == 1 else CS_OPEN,
+            CS_WALL_BASE, hdr, smp, acc)
+        N = N1 if j == 1 else N0
+        if ok and N >= 0.0 and N2 >= 0.0:
+            set_single(j, st, disc)
+            disc[D_CS2] = CS_WALL_BASE
+            return RUNNING
+        # no slip along the wall: the slip stops (plastic, dissipative)
+        y[3] -= vt
+    # pivot at rest on the ground, corner on the wall: wedged (all
+    # velocities 0: dissipative) if the forces allow it
+    y[1] = 0.0
+    project_single(j, y, par, True)
+    st0 = CS_STICK if j == 0 else CS_OPEN
+    st1 = CS_STICK if j == 1 else CS_OPEN
+    ok, N0, F0, N1, F1, N2, _F2 = mode_solve(t, y, par, st0, st1,
+                                             CS_WALL_BASE, hdr, smp, acc)
+    N = N1 if j == 1 else N0
+    F = F1 if j == 1 else F0
+    if ok and N >= 0.0 and N2 >= 0.0 and (abs(F) <= mu * N
+                                          or not np.isfinite(mu)):
+        set_contacts(disc, st0, st1, CS_WALL_BASE)
+        log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], disc[D_PIVOT])
+        return RUNNING
+    if np.isfinite(par[C_MU_K]):
+        sig1 = -1 if F > 0.0 else 1
+        for sig in (sig1, -sig1):
+            st = slip_state(sig)
+            ok, N0, _F0, N1, _F1, N2, _F2 = mode_solve(
+                t, y, par, st if j == 0 else CS_OPEN,
+                st if j == 1 else CS_OPEN, CS_WALL_BASE, hdr, smp, acc)
+            N = N1 if j == 1 else N0
+            _an, at = contact_acc(j, y, par, acc)
+            if ok and N >= 0.0 and N2 >= 0.0 and sig * at >= -1e-12 * (
+                    par[P_G] + abs(acc[0]) + abs(acc[1])):
+                set_single(j, st, disc)
+                disc[D_CS2] = CS_WALL_BASE
+                met[M_N_STICK_SLIP] += 1
+                log_event(log, cnt, t, EV_SLIP, y[1], y[1], y[0], sig)
+                return RUNNING
+    # from rest (velocities 0 now) the ground-only pick
+    return pick_single_ground(j, t, y, par, disc, hdr, smp, met, log, cnt,
+                              False)
+
+
+@jit
+def pick_single_ground(j, t, y, par, disc, hdr, smp, met, log, cnt,
+                       forbid_stick):
     """Base corner j on the ground (after an impact or landing, or at a
     stick / slip / lift event), the other one off it: pick ROCK, SLIDE_ROCK
     or FLIGHT by the mode solve (physics.md 4.2, 4.5, 4.6).
@@ -983,6 +1212,13 @@ def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     incremental impact where the algebraic rule fails."""
     s = disc[D_PIVOT]
     j_old = 1 if s > 0 else 0
+    if 1 - j_old == near_index(par) and near_at_wall(y, par):
+        # the block comes down flat with its face on the wall: rocking on
+        # the wall-side corner is blocked, a face impact
+        met[M_IMPACTS] += 1
+        log_event(log, cnt, t, EV_IMPACT, y[1], 0.0, 0.0, -s)
+        return face_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
+                           False)
     _g, _vn, vs = point_kin(j_old, y, par)
     pre = y[1]
     e = par[P_E]
@@ -1182,8 +1418,9 @@ def wall_rest_margin(t, y, par, disc, hdr, smp):
     st0 = CS_STICK if j == 0 else CS_OPEN
     st1 = CS_STICK if j == 1 else CS_OPEN
     bx, by, bw = free_acc(te, par, hdr, smp)
+    st2 = CS_WALL_BASE if disc[D_CS2] == CS_WALL_BASE else CS_FREE
     ok, N0, F0, N1, F1, N2, _F2 = solve_contacts(
-        y[0], bx, by, bw, 0.0, par, st0, st1, CS_FREE, acc)
+        y[0], bx, by, bw, 0.0, par, st0, st1, st2, acc)
     N = N1 if j == 1 else N0
     F = F1 if j == 1 else F0
     m = min(N2, N)
@@ -1203,7 +1440,7 @@ def post_energy(y, par, post):
 
 
 @jit
-def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post):
+def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post, kw=2):
     """Wall impact while base corner j is on the ground with Coulomb
     friction mu_s, mu_k (finite): the wall's post-impact normal velocity is
     tgt = -e_w v_n-, the pivot's normal velocity stays 0 and its tangential
@@ -1219,7 +1456,9 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post):
     A tall-wall impact before the block passes its own instability
     (theta_w < alpha) needs a pulling pivot impulse to keep the pivot down
     (the CM, moving up, must reverse): no friction can provide it, and the
-    pivot separates."""
+    pivot separates.  kw: the wall point (2 top corner, K_NEAR the
+    wall-side base corner)."""
+    stw = CS_WALL_BASE if kw == K_NEAR else CS_FREE
     mu_s = par[C_MU_S]
     mu_k = par[C_MU_K]
     th = y[0]
@@ -1228,7 +1467,7 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post):
     tol = before * (1.0 + 1e-12) + 1e-300
     ok, N0, F0, N1, F1, N2, _F2 = solve_targets(
         th, vgx, vgy, om, 0.0, par, CS_STICK if j == 0 else CS_OPEN,
-        CS_STICK if j == 1 else CS_OPEN, CS_FREE, tgt, post)
+        CS_STICK if j == 1 else CS_OPEN, stw, tgt, post)
     N = N1 if j == 1 else N0
     F = F1 if j == 1 else F0
     if ok and N >= 0.0 and N2 >= 0.0 and abs(F) <= mu_s * N:
@@ -1243,7 +1482,7 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post):
     st = slip_state(sig)
     ok, N0, _F0, N1, _F1, N2, _F2 = solve_targets(
         th, vgx, vgy, om, 0.0, par, st if j == 0 else CS_OPEN,
-        st if j == 1 else CS_OPEN, CS_FREE, tgt, cand)
+        st if j == 1 else CS_OPEN, stw, tgt, cand)
     N = N1 if j == 1 else N0
     if ok and N >= 0.0 and N2 >= 0.0:
         E, tmp = post_energy(y, par, cand)
@@ -1252,7 +1491,7 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post):
             for i in range(3):
                 post[i] = cand[i]
             return False
-    solve_targets(th, vgx, vgy, om, 0.0, par, CS_OPEN, CS_OPEN, CS_FREE, tgt,
+    solve_targets(th, vgx, vgy, om, 0.0, par, CS_OPEN, CS_OPEN, stw, tgt,
                   cand)
     E, tmp = post_energy(y, par, cand)
     _g, vn1, vt1 = point_kin(j, tmp, par)
@@ -1270,7 +1509,7 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post):
     wtt = 1.0 + ry * ry / iG
     wtn = -ry * rx / iG
     wnn = 1.0 + rx * rx / iG
-    rwx, rwy = point_offset(2, th, par)
+    rwx, rwy = point_offset(kw, th, par)
     nwx = -par[P_WALL_SIDE]
     jw = rwy * nwx
     ww = nwx * nwx + jw * jw / iG
@@ -1285,7 +1524,7 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post):
             post[1] += pn
             post[2] += (ry * pt - rx * pn) / iG
             set_cm_velocity(tmp, par, post[0], post[1], post[2])
-        _g, vn2, _vt2 = point_kin(2, tmp, par)
+        _g, vn2, _vt2 = point_kin(kw, tmp, par)
         if vn2 >= -1e-12 * scale:
             break
         pw = -vn2 / ww
@@ -1295,49 +1534,121 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post):
 
 
 @jit
-def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
-    """The wall corner reached the (frictionless) wall: impulse solve with
-    the wall's post-impact normal velocity -e_w v_n- and, while rocking, the
-    pivot held (ROCK: its velocity 0, which gives theta'+ = -e_w theta'-
-    about the pivot as kernels/wall.py) or frictionless during the impact
+def face_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, count_wall):
+    """The block arrives flat with its face at the wall (slid flat into it,
+    or rocked / flew down flat onto the ground with the wall-side base
+    corner at the wall): a face impact.  The face is a line contact with
+    the wall (its resultant anywhere between the base and the top corner)
+    and the base a line contact with the ground, so the impulse is
+    statically indeterminate; the rule: the block ends flat (theta =
+    theta' = 0, z = z' = 0: a plastic ground impact, rocking on the
+    wall-side corner being blocked by the wall), its CM's horizontal
+    velocity toward the wall reversed with the wall restitution (v_x+ =
+    -e_w v_x-), a velocity away from the wall kept, then reduced by the
+    ground friction impulse mu_k L_n, L_n = max(0, -v_Gy-) (the vertical
+    impulse of the ground; mu_k = inf: stopped); below the rest rule's
+    speed (O_EPS_OMEGA h, or chatter within O_EPS_T) it stops.  The
+    kinetic energy becomes v_x+^2 / 2 <= v_Gx-^2 / 2: never more.  Then
+    ``pick_flat`` (face rest, or sliding / rocking away)."""
+    w = par[P_WALL_SIDE]
+    s = disc[D_PIVOT]
+    before = kinetic_energy(y, par)
+    vgx, vgy = cm_velocity(y, par)
+    pre = y[1]
+    chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
+    if count_wall:
+        met[M_WALL_IMPACTS] += 1
+    met[M_T_LAST_IMPACT] = t
+    vx = vgx
+    if w * vx > 0.0:
+        vx = -par[P_E_W] * vx
+    ln = max(0.0, -vgy)
+    if not np.isfinite(par[C_MU_K]):
+        vx = 0.0
+    elif abs(vx) <= par[C_MU_K] * ln:
+        vx = 0.0
+    else:
+        vx -= par[C_MU_K] * ln * (1.0 if vx > 0.0 else -1.0)
+    if chatter or abs(vx) < opt[O_EPS_OMEGA] * hmid(par):
+        vx = 0.0
+    y[0] = 0.0
+    y[1] = 0.0
+    y[2] = w * par[C_GAP]
+    y[3] = vx
+    y[4] = 0.0
+    y[5] = 0.0
+    check_energy(before, kinetic_energy(y, par), met)
+    if count_wall:
+        log_event(log, cnt, t, EV_WALL_IMPACT, pre, 0.0, 0.0, s)
+    st = pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+    if disc[D_MODE] == MODE_REST:
+        log_event(log, cnt, t, EV_WALL_REST, pre, 0.0, 0.0, 0)
+    return st
+
+
+@jit
+def at_face(y, par):
+    """Both the wall-side base corner and the top corner at the wall: the
+    face touches it."""
+    if not near_at_wall(y, par):
+        return False
+    bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
+    gap, _vn, _vt = point_kin(2, y, par)
+    return gap <= FACE_RTOL * bw
+
+
+@jit
+def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
+    """Wall point kw (2: the top corner, K_NEAR: the wall-side base corner)
+    reached the (frictionless) wall: impulse solve with the wall's
+    post-impact normal velocity -e_w v_n- and, while rocking, the pivot
+    held (ROCK: its velocity 0, which gives theta'+ = -e_w theta'- about
+    the pivot as kernels/wall.py) or frictionless during the impact
     (SLIDE_ROCK: its normal velocity 0); in flight the wall alone.  Flat
-    sliding into the wall is a face impact: x'+ = -e_w x'-, no rotation."""
+    sliding into the wall, or the face reaching it, is a face impact
+    (``face_impact``)."""
     mode = disc[D_MODE]
     s = disc[D_PIVOT]
     j = 1 if s > 0 else 0
+    if mode == MODE_SLIDE or at_face(y, par):
+        return face_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
+                           True)
+    stw = CS_WALL_BASE if kw == K_NEAR else CS_FREE
     before = kinetic_energy(y, par)
     pre = y[1]
-    _gap, vn2, _vt2 = point_kin(2, y, par)
+    _gap, vn2, _vt2 = point_kin(kw, y, par)
     e_w = par[P_E_W]
     met[M_WALL_IMPACTS] += 1
     chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
     met[M_T_LAST_IMPACT] = t
-    if mode == MODE_SLIDE or base_at_wall(y, par, 1e-6):
-        # the block slid flat into the wall: a face contact, not in this model yet
-        log_event(log, cnt, t, EV_WALL_IMPACT, pre, pre, y[0], s)
-        return FAIL_FACE_CONTACT
     vgx, vgy = cm_velocity(y, par)
     post = np.empty(3)
     tgt = -e_w * vn2
     separated = False
     if mode == MODE_FLIGHT:
         solve_targets(y[0], vgx, vgy, y[1], 0.0, par, CS_OPEN, CS_OPEN,
-                      CS_FREE, tgt, post)
+                      stw, tgt, post)
     elif mode == MODE_ROCK and not np.isfinite(par[C_MU_S]):
         # mu = inf: the pivot is held (bilateral, as the single-DOF map of
         # kernels/wall.py: theta'+ = -e_w theta'-), whatever the sign of its
         # normal impulse
         solve_targets(y[0], vgx, vgy, y[1], 0.0, par,
                       CS_STICK if j == 0 else CS_OPEN,
-                      CS_STICK if j == 1 else CS_OPEN, CS_FREE, tgt, post)
+                      CS_STICK if j == 1 else CS_OPEN, stw, tgt, post)
     else:
-        separated = wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post)
+        separated = wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post,
+                                      kw)
     set_cm_velocity(y, par, post[0], post[1], post[2])
     check_energy(before, kinetic_energy(y, par), met)
     track_rotation(y[0], met)
     log_event(log, cnt, t, EV_WALL_IMPACT, pre, y[1], y[0], s)
     if mode == MODE_FLIGHT:
         return RUNNING
+    if kw == K_NEAR:
+        if separated:
+            return enter_flight(t, y, par, disc, met, log, cnt)
+        return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
+                           False)
     _g, _vn, vt = point_kin(j, y, par)
     settle = abs(y[1]) < opt[O_EPS_OMEGA] or chatter
     if separated and (settle or abs(pre) < opt[O_EPS_OMEGA]):
@@ -1424,6 +1735,14 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
                        cnt)
     if k == K_WALL:
         return wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
+    if k == K_WALL_BASE:
+        if mode != MODE_FLIGHT and disc[D_CS2] == CS_WALL_BASE:
+            # the wall's normal force reached 0: the corner leaves the wall
+            log_event(log, cnt, t, EV_WALL_RELEASE, y[1], y[1], y[0], s)
+            return pick_single_ground(j, t, y, par, disc, hdr, smp, met, log,
+                                      cnt, False)
+        return wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
+                           K_NEAR)
     if k == K_LIFT:
         if mode == MODE_SLIDE:
             return pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
@@ -1449,26 +1768,22 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
 
 
 @jit
-def base_at_wall(y, par, rtol=1e-9):
-    """The base corner on the wall side has reached the wall plane (to rtol
-    of the half-width): the face touches the wall, a contact this model does
-    not represent yet."""
+def base_in_wall(y, par):
+    """The wall-side base corner is inside the wall by more than FACE_RTOL
+    of the half-width: the face contact was missed (a bug guard; the
+    events K_WALL, K_WALL_BASE and the face modes keep it out)."""
     if not wall_active(par):
         return False
-    w = par[P_WALL_SIDE]
-    k = 1 if w > 0.0 else 0
-    bw = par[C_B2] if w > 0.0 else par[C_B1]
-    hm = hmid(par)
-    rx, _ry = point_offset(k, y[0], par)
-    gx = y[2] + hm * math.sin(y[0])
-    return bw + par[C_GAP] - w * (gx + rx) <= rtol * bw
+    bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
+    gap, _vn, _vt = point_kin(K_NEAR, y, par)
+    return gap < -FACE_RTOL * bw
 
 
 @jit
 def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     book_time(t, disc, met)
     mode = disc[D_MODE]
-    if base_at_wall(y, par):
+    if base_in_wall(y, par):
         return FAIL_FACE_CONTACT
     if mode == MODE_FLIGHT:
         track_jump(y, par, met)

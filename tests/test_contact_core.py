@@ -400,7 +400,8 @@ def test_wall_impact_with_pivot_friction_never_creates_energy(b, h, mu_s, k, e_w
     if sep:
         assert abs(Ln) <= 1e-9 * scale and abs(Lt) <= 1e-9 * scale
     else:
-        assert abs(Lt) <= mu_s * Ln * (1 + 1e-9) + 1e-9 * scale
+        # (Ln is a difference of O(scale) velocities: its rounding, times mu_s up to 1e9)
+        assert abs(Lt) <= mu_s * (Ln + 1e-14 * scale) * (1 + 1e-9) + 1e-9 * scale
 
 
 # ------------------------------------------------------------------ probe: pulses against a wall
@@ -413,10 +414,10 @@ PROBE_INF_FLIES = {(5.0, 0.5, 1), (5.0, 0.5, -1)}
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("mu", [math.inf, 1e9, 50.0, 2.0])
+@pytest.mark.parametrize("mu", [math.inf, 1e9, 50.0, 2.0, 0.5, 0.15])
 def test_probe_pulses_against_wall(mu):
     """One-sine pulses a/(g tan alpha) x f x sign against a wall 0.02 m away: no run fails
-    (finite mu: except as failed:face-contact), flights stay few; mu = inf reproduces the wall kernel (outcome, max rotation) except where
+    (the face against the wall included), flights stay few; mu = inf reproduces the wall kernel (outcome, max rotation) except where
     the block truly flies.  Finite mu (even 1e9) need not: a tall-wall impact at theta_w <
     alpha needs a pulling pivot impulse, which no friction provides, so the pivot leaves the
     ground (wall_pivot_impact)."""
@@ -425,11 +426,9 @@ def test_probe_pulses_against_wall(mu):
         p = Pulse(amp, f, sign=sg, amplitude_unit="g_tan_alpha")
         a = simulate(BODY, p, wall=Wall(gap=0.02), friction=Friction(mu, lift_off="flight"))
         key = (mu, amp, f, sg)
-        # the only failure allowed is the explicit one: the base slid (or the pivot, leaving the
-        # ground at a wall impact, swung) to the wall, a face contact this model does not hold yet
-        assert a.status == "failed:face-contact" or not a.status.startswith("failed"), key
-        if mu == math.inf:
-            assert not a.status.startswith("failed"), key
+        # the face against the wall (the base slid, or the pivot, leaving the ground at a wall
+        # impact, swung to it) is a contact of the model: no run fails
+        assert not a.status.startswith("failed"), key
         assert a.metrics["flights"] <= 100, key   # wall chatter through short flights: ~35
         if mu != math.inf:
             continue
