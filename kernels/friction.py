@@ -101,6 +101,25 @@ def stick_rock(t, theta, dtheta, s, par, hdr, smp):
 
 
 @jit
+def stick_force_rates(t, theta, dtheta, s, par, hdr, smp):
+    """(F, N, dF/dt, dN/dt) per unit mass, rocking on s without slip: with
+    dX/dtheta = Y, dY/dtheta = -X and i_0 constant, the rate of theta'' is
+    (G' X + G Y w - a_g' Y + a_g X w) / i_0."""
+    ag, dag, av, dav = ground_rates(t, hdr, smp)
+    G = par[P_G] + av
+    X, Y = offsets(theta, s, par)
+    w = dtheta
+    i0 = par[Q_IG] + X * X + Y * Y
+    tdd = (G * X - ag * Y) / i0
+    t3 = (dav * X + G * Y * w - dag * Y + ag * X * w) / i0
+    F = ag + Y * tdd - X * w * w
+    N = G - X * tdd - Y * w * w
+    dF = dag - X * w * tdd + Y * t3 - Y * w * w * w - 2.0 * X * w * tdd
+    dN = dav - Y * w * tdd - X * t3 + X * w * w * w - 2.0 * Y * w * tdd
+    return F, N, dF, dN
+
+
+@jit
 def slip_rock(t, theta, dtheta, s, sigma, par, hdr, smp):
     """(theta'', d'', N) per unit mass, rocking on s and slipping toward
     sigma with F = -mu_k sigma N."""
@@ -164,14 +183,19 @@ def event(k, t, y, par, disc, hdr, smp):
                 return g, 0.0, True
             if k == E_LIFT_OFF:
                 return np.inf, 0.0, True
-        tdd, F, N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
+        if k == E_PEAK:
+            tdd, _F, _N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
+            return s * y[1], s * tdd, False
+        # the rates let the driver find a dip between two step ends
+        # (grazing: N or the cone margin briefly negative inside a step)
+        F, N, dF, dN = stick_force_rates(t, y[0], y[1], s, par, hdr, smp)
         if k == E_SLIP_STICK:
-            # rate by a one-sided difference: F and N depend on a_g, theta''
             g = par[Q_MU_S] * N - abs(F)
-            return g, 0.0, True
+            dg = par[Q_MU_S] * dN - (dF if F > 0.0 else -dF)
+            return g, dg, True
         if k == E_LIFT_OFF:
-            return N, 0.0, True
-        return s * y[1], s * tdd, False      # E_PEAK
+            return N, dN, True
+        return np.inf, 0.0, False
     tdd, dd, N = slip_rock(t, y[0], y[1], s, sig, par, hdr, smp)
     if k == E_SLIP_STICK:
         return sig * y[3], sig * dd, True
