@@ -607,7 +607,11 @@ def event(k, t, y, par, disc, hdr, smp):
                 t, y, par, disc[D_CS0], disc[D_CS1], disc[D_CS2], hdr, smp,
                 acc)
             if k == K_LIFT:
-                return min(N0, N1), 0.0, True
+                # the trailing corner's N = G (b - mu_k h) / (2b) (for the
+                # rectangle) is 0 at mu_k = b/h: it lifts only when N is
+                # negative beyond the rounding (friction.py: SLIDE while
+                # mu_k <= b/h)
+                return min(N0, N1) + UPLIFT_RTOL * (N0 + N1), 0.0, True
             sig = disc[D_SLIP_DIR]
             _an, at = contact_acc(0, y, par, acc)
             _g, _vn, vt = point_kin(0, y, par)
@@ -899,7 +903,8 @@ def pick_flat(t, y, par, disc, hdr, smp, met, log, cnt):
         st = slip_state(sig)
         ok, N0, _F0, N1, _F1, _N2, _F2 = mode_solve(t, y, par, st, st,
                                                     CS_OPEN, hdr, smp, acc)
-        if ok and N0 >= 0.0 and N1 >= 0.0:
+        ntol = -UPLIFT_RTOL * (N0 + N1)
+        if ok and N0 >= ntol and N1 >= ntol:
             set_contacts(disc, st, st, CS_OPEN)
             return RUNNING
         for s in (sig, -sig):
@@ -961,7 +966,15 @@ def pick_flat(t, y, par, disc, hdr, smp, met, log, cnt):
                                                     CS_OPEN, hdr, smp, acc)
         N = N1 if jp == 1 else N0
         _an, at = contact_acc(jp, y, par, acc)
-        if ok and N >= 0.0 and sp * acc[2] > 0.0 and sig * at >= 0.0:
+        # slip-rock from flat rest needs mu_k h > b (the friction's moment
+        # about the CM beats the normal force's: s theta'' ~ N (mu_k h -
+        # b)); at mu_k = b/h exactly the block slides flat, as in
+        # kernels/friction.py (mu_k > b/h), not on the rounding of theta''
+        bp = par[C_B2] if jp == 1 else par[C_B1]
+        hp = par[C_H2] if jp == 1 else par[C_H1]
+        tips = par[C_MU_K] * hp > bp * (1.0 + UPLIFT_RTOL)
+        if (ok and N >= 0.0 and sp * acc[2] > 0.0 and sig * at >= 0.0
+                and tips):
             set_contacts(disc, st0, st1, CS_OPEN)
             mark_uplift(t, met)
             met[M_N_STICK_SLIP] += 1
