@@ -440,3 +440,83 @@ def test_probe_pulses_against_wall(mu):
         assert a.metrics["flights"] == 0, key
         assert a.status == c.status, key
         assert a.metrics["max_rotation"] == pytest.approx(c.metrics["max_rotation"], rel=1e-6), key
+
+
+# ------------------------------------------------------------------ the face against the wall
+def _transition_harness():
+    hdr, smp = to_header(BODY, None, None)
+    opt = Solver(rtol=1e-10).options(2.0, False)
+    return (hdr, smp, opt, np.zeros(L.N_MET), np.empty((200, L.N_LOG)),
+            np.zeros(N_COUNTERS, np.int64), np.zeros(L.N_DISC, np.int64))
+
+
+def _near_at_wall(y, par):
+    """Shift the block horizontally so that its wall-side base corner touches the wall."""
+    gap, _vn, _vt = C.point_kin(C.K_NEAR, y, par)
+    y[2] += par[C.P_WALL_SIDE] * gap
+
+
+@settings(max_examples=300, deadline=None)
+@given(b=st.floats(0.05, 1.0), h=st.floats(0.2, 2.0), mu=st.sampled_from([0.1, 0.3, 0.6, 2.0, math.inf]),
+       e_w=st.floats(0.0, 1.0), side=st.sampled_from([-1, 1]), th=st.floats(-1e-7, 1e-7),
+       vx=st.floats(-2.0, 2.0), vy=st.floats(-1.0, 0.0), om=st.floats(-2.0, 2.0),
+       sliding=st.booleans())
+def test_face_impact_never_creates_energy(b, h, mu, e_w, side, th, vx, vy, om, sliding):
+    """The block arriving flat at the wall with its face (``face_impact``, then the mode pick):
+    random pre-impact velocities; the kinetic energy never grows, the block ends flat with its
+    face at the wall, not moving into it."""
+    body = RigidBlock.rectangle(b=b, h=h, e=0.5)
+    par = cpar(body, mu, gap=0.05, side=side, e_w=e_w)
+    hdr, smp, opt, met, log, cnt, disc = _transition_harness()
+    y = np.zeros(C.N_STATE)
+    if sliding:
+        C.set_contacts(disc, C.CS_SLIP_P, C.CS_SLIP_P, C.CS_OPEN)
+        C.set_cm_velocity(y, par, vx, 0.0, 0.0)
+    else:
+        y[0] = th
+        j = 0 if side < 0 else 1
+        C.set_single(j, C.CS_STICK, disc)
+        C.set_cm_velocity(y, par, vx, vy, om)
+    _near_at_wall(y, par)
+    before = C.kinetic_energy(y, par)
+    status = C.face_impact(0.5, y, par, disc, hdr, smp, opt, met, log, cnt, True)
+    assert status == L.RUNNING
+    after = C.kinetic_energy(y, par)
+    assert after <= before * (1 + 1e-12) + 1e-300
+    assert met[L.M_ENERGY_GAINS] == 0
+    assert y[0] == 0.0 and y[1] == 0.0 and y[5] == 0.0
+    gap, vn, _vt = C.point_kin(C.K_NEAR, y, par)
+    assert abs(gap) <= 1e-12 and vn >= 0.0
+
+
+@settings(max_examples=300, deadline=None)
+@given(b=st.floats(0.05, 1.0), h=st.floats(0.2, 2.0), mu=st.sampled_from([0.1, 0.3, 0.6, 2.0, 1e9, math.inf]),
+       e_w=st.floats(0.0, 1.0), side=st.sampled_from([-1, 1]), th=st.floats(1e-5, 0.3),
+       om=st.floats(-3.0, 3.0), vt=st.floats(-2.0, 2.0), slipping=st.booleans())
+def test_base_corner_wall_impact_never_creates_energy(b, h, mu, e_w, side, th, om, vt, slipping):
+    """The wall-side base corner reaching the wall while the block rocks (or slide-rocks) on its
+    far corner, tilted away from the wall (``wall_impact`` with K_NEAR, then the wall-aware mode
+    pick: ground-only, wedged, ladder slip or flight): the kinetic energy never grows and the
+    corner no longer moves into the wall."""
+    from hypothesis import assume
+    body = RigidBlock.rectangle(b=b, h=h, e=0.5)
+    par = cpar(body, mu, gap=0.05, side=side, e_w=e_w)
+    hdr, smp, opt, met, log, cnt, disc = _transition_harness()
+    j = 1 if side < 0 else 0                 # far corner
+    y = np.array([-side * th, om, 0.0, 0.0, 0.0, 0.0])
+    C.project_single(j, y, par, True)
+    if slipping and np.isfinite(mu):
+        y[3] += vt
+    _near_at_wall(y, par)
+    _g, vn, _vt = C.point_kin(C.K_NEAR, y, par)
+    assume(vn < -1e-6)
+    _g, _vn, vs = C.point_kin(j, y, par)
+    C.set_single(j, C.CS_STICK if vs == 0.0 else C.slip_state(1 if vs > 0 else -1), disc)
+    before = C.kinetic_energy(y, par)
+    status = C.wall_impact(0.5, y, par, disc, hdr, smp, opt, met, log, cnt, C.K_NEAR)
+    assert status in (L.RUNNING, L.FAIL_INCONSISTENT)
+    after = C.kinetic_energy(y, par)
+    assert after <= before * (1 + 1e-12) + 1e-300
+    assert met[L.M_ENERGY_GAINS] == 0
+    _g, vn1, _vt = C.point_kin(C.K_NEAR, y, par)
+    assert vn1 >= -1e-9 * math.sqrt(2 * before)
