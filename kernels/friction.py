@@ -198,6 +198,12 @@ def event(k, t, y, par, disc, hdr, smp):
         return np.inf, 0.0, False
     tdd, dd, N = slip_rock(t, y[0], y[1], s, sig, par, hdr, smp)
     if k == E_SLIP_STICK:
+        if y[3] == 0.0:
+            # a slip just picked from zero speed runs forward: sigma a_t =
+            # det W (|F_s| - mu_k N_s) i_G / D >= 0 exactly (module
+            # docstring); the computed sigma d'' is 0 up to rounding there,
+            # and a negative rounding would end the slip at once
+            return 0.0, max(sig * dd, 0.0), True
         return sig * y[3], sig * dd, True
     if k == E_LIFT_OFF:
         return N, 0.0, True
@@ -568,9 +574,10 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             if A > 0.0:
                 # N = A i_G / D reached 0 through D = 0 with the corner
                 # pressed: Painleve's dynamic jam stops the slip
+                pre = y[1]
                 stop_slip(t, y, s, par, met)
                 met[M_N_STICK_SLIP] += 1
-                log_event(log, cnt, t, EV_STICK, y[1], y[1], y[0], s)
+                log_event(log, cnt, t, EV_STICK, pre, y[1], y[0], s)
                 code, sig = pick_rocking(t, y, s, par, hdr, smp, True)
                 return apply_pick(code, sig, t, y, s, disc, met, log, cnt,
                                   True)

@@ -503,3 +503,25 @@ def test_random_scenes_definite_and_mu_1e6_is_the_rigid_block():
         assert abs(a - b) <= 1e-6 * max(1.0, abs(b)), (where, a, b)
     print(f"comparable {n_cmp}, tension {n_tension}, near {n_near}, worst {worst:.2g}")
     assert n_cmp > 120 and n_tension > 100
+
+
+def test_grazing_slip_onset_at_mu_1e6_does_not_loop():
+    """Found by the random sample (seed 7): a slender block (b/h = 0.011, e = 0.9998) in its
+    overturning fall after the pulse, Friction(1e6): N_s grazes 0 (down to 6.9e-6 g), the cone
+    is left, the slip toward sigma1 is consistent (A > 0, D > 0) but starts with a computed
+    acceleration of -2.9e-10 (rounding: it is 0 at the onset) and re-sticks 0.7 ms later.  The
+    stick event fired at once and stick/slip alternated 200 times at one instant
+    (failed:transition-loop).  The slip from zero speed now starts with its exact rate sign
+    (>= 0), so its stick is found inside the step: 2 transitions, a 7.5e-12 m slip, and the
+    frictionless block's outcome (mode 1) and max rotation (to 1e-9)."""
+    body = RigidBlock.rectangle(0.00868686220745685, 0.8074714504304525, e=0.9998264148730203)
+    pulse = fuzz_pulse(4.343099695433948, 2.0187701141930656, -1, "one-cosine")
+    r = fr.simulate(body, pulse, friction=Friction(1e6, slide_tolerance=1e-6), rtol=1.5899521350375924e-10,
+                    t_after=5.0)
+    r0 = fr.simulate(body, pulse, rtol=1.5899521350375924e-10, t_after=5.0)
+    H.definite(r, 200_000, STATE)
+    assert r.status == r0.status == "overturn:mode1"
+    assert r.metrics["stick_slip"] == 2 and r.metrics["max_slide"] < 1e-9
+    ev = r.events.set_index("event")
+    assert 1e-4 < ev.loc["stick", "t"] - ev.loc["slip", "t"] < 1e-2
+    assert r.metrics["max_rotation_ratio"] == pytest.approx(r0.metrics["max_rotation_ratio"], rel=1e-9)
