@@ -45,8 +45,8 @@ STATUS_DESCRIPTION = {
                             "body (the solution diverged or would have): a smaller dt, or the adaptive "
                             "solver, gives the answer",
     "failed:interrupted": "stopped by Ctrl-C before the run finished",
-    "failed:face-contact": "the block slid (or flew) until its base reached the wall: a face contact, which "
-                           "the contact model does not represent yet",
+    "failed:face-contact": "guard: the block's base went into the wall, which the contact model's face "
+                           "modes should have prevented (please report the run)",
 }
 
 

@@ -26,7 +26,7 @@ FAIL_OUTPUT_FULL = -6   # time-history buffer full (front end retries larger)
 FAIL_INCONSISTENT = -7  # no contact mode is consistent (Painleve-type, friction)
 FAIL_UNSTABLE = -8      # fixed step outside the integrator's stability region
 FAIL_INTERRUPTED = -9   # stopped by the user (Ctrl-C) during the run
-FAIL_FACE_CONTACT = -10  # the base reached the wall (a face contact: not modelled yet)
+FAIL_FACE_CONTACT = -10  # guard: the base went into the wall (the face contact modes missed it)
 
 # ---- discrete state vector (int64) -----------------------------------------
 D_MODE = 0         # contact mode, model specific (MODE_* below)
