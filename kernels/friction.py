@@ -40,10 +40,13 @@ slip onset from stick (N_s > 0, F_s = -sigma1 mu_s N_s), A = w12 F_s + w22
 N_s = N_s (w22 - mu_s sigma1 w12) <= N_s D(sigma1) / i_G because mu_k <=
 mu_s, so D(sigma1) < 0 (Painleve: mu large) implies A < 0: the block lifts
 off, and that is the only consistent mode (the slip toward -sigma1 has
-D = 2 i_G w22 - D(sigma1) > 0 and so N < 0).  With no consistent mode
-(A > 0 and D(sigma1) <= 0, Painleve's non-existence) the pivot is held as
-with mu = inf (a jam, the impulsive-limit friction of kernels/contact.py)
-until stick, slip or flight becomes consistent.  While slipping, N = A i_G / D reaches 0
+D = 2 i_G w22 - D(sigma1) > 0 and so N < 0).  Some mode is always
+consistent at zero slip velocity: if A > 0 and D(sigma1) <= 0, then
+mu_k sigma1 w12 >= w22 > 0 and w22 N_s > sigma1 w12 |F_s|, so N_s > 0 and
+|F_s| < w22 N_s / (sigma1 w12) <= mu_k N_s: stick holds.  Only rounding at
+these boundaries can leave none; then the pivot is held as with mu = inf (a
+jam, the impulsive-limit friction of kernels/contact.py) until stick, slip
+or flight is consistent again.  While slipping, N = A i_G / D reaches 0
 either with A <= 0 (lift-off) or with A > 0 through D = 0 (Painleve's
 dynamic jam): a tangential impact without collision then stops the slip
 (Darboux-Keller / Routh from v_n = 0: the corner slips until v_t = 0, then

@@ -525,3 +525,68 @@ def test_grazing_slip_onset_at_mu_1e6_does_not_loop():
     ev = r.events.set_index("event")
     assert 1e-4 < ev.loc["stick", "t"] - ev.loc["slip", "t"] < 1e-2
     assert r.metrics["max_rotation_ratio"] == pytest.approx(r0.metrics["max_rotation_ratio"], rel=1e-9)
+
+
+def test_pick_is_consistent_and_never_jams():
+    """kernels/friction.py's pick at zero slip velocity on 20000 random states (rectangles b/h
+    0.03-1, mu_s 1-100 and mu_k <= mu_s, |a_g| <= 5 g, any rotation and speed, both pivots):
+    the mode returned is consistent by the independent stick forces, A and D (stick: N >= 0 and
+    |F| <= mu_s N; slip toward sigma: N_slip = A i_G / D >= 0 and the slip not reversed; flight:
+    A <= 0), and never a jam: at zero slip speed some mode is always consistent (the proof in
+    the module docstring), so the jam only catches rounding."""
+    from fastrock.kernels import friction as FK
+    rng = np.random.default_rng(5)
+    seen = {FK.PICK_ROCK: 0, FK.PICK_SLIP: 0, FK.PICK_FLIGHT: 0}
+    for _ in range(20000):
+        body = RigidBlock.rectangle(10 ** rng.uniform(-1.5, 0), 1.0)
+        mu_s = 10 ** rng.uniform(0, 2)
+        mu_k = mu_s * rng.uniform(0.5, 1.0)
+        par = rigid_friction_par(body, Friction(mu_s, mu_k))
+        ag = rng.uniform(-5, 5) * G0
+        s = int(rng.choice([-1, 1]))
+        th = s * rng.uniform(0, 1.2)
+        w = rng.normal() * 3
+        y = np.array([th, w, 0.0, 0.0])
+        code, sig = FK.pick_rocking(1.0, y, s, par, header(ag), np.zeros(1), True)
+        _tdd, F, N, A, X, Y = stick_forces(body, th, w, s, ag)
+        _b, _h, iG = block_par(body)
+        assert code != FK.PICK_JAM, (th, w, ag)
+        seen[code] += 1
+        if code == FK.PICK_ROCK:
+            assert N >= 0 and abs(F) <= mu_s * N
+        elif code == FK.PICK_SLIP:
+            D = slip_den(body, X, Y, sig, mu_k)
+            assert A * iG / D >= 0
+            _t2, dd, Ns = FK.slip_rock(1.0, th, w, s, sig, par, header(ag), np.zeros(1))
+            assert sig * dd >= -1e-9 * (G0 + abs(ag)) and Ns >= -1e-12 * G0
+        else:
+            assert A <= 0
+    assert min(seen.values()) > 1000, seen
+
+
+@pytest.mark.parametrize("s", [1, -1])
+def test_painleve_slip_stopped_by_tangential_impact(s):
+    """A slide-rock that starts in Painleve's inconsistent case: b/h = 0.2, mu = 3, theta = 0.05 s
+    on pivot s, slipping toward sigma = s at 0.5 m/s, no excitation.  D(sigma) = i_G + X (X +
+    mu sigma Y) < 0 with the corner pressed (A > 0), so the slip would need N < 0 and flight is
+    inconsistent: the slip is stopped at once by the tangential impact without collision (the
+    plastic stick impulse; angular momentum about the corner conserved, i_0 theta'+ = Y d'-),
+    which dissipates, and the block then rocks (stick).  Formerly the run ended "flight" at
+    t = 0 (N < 0 read as a lift-off with the corner pressed into the ground)."""
+    from test_friction import run_kernel
+    body = RigidBlock.rectangle(0.2, 1.0)
+    mu, th, v = 3.0, 0.05 * s, 0.5 * s
+    _tdd, F, N, A, X, Y = stick_forces(body, th, 0.0, s, 0.0)
+    _b, _h, iG = block_par(body)
+    assert slip_den(body, X, Y, s, mu) < 0 and A > 0
+    code, met, ht, hy, hd, log, _par = run_kernel(body, Friction(mu), (th, 0.0, 0.0, v), 3.0)
+    assert code > 0 and np.isfinite(hy).all()
+    assert log[0, 1] == 12 and log[0, 0] == 0.0           # EV_STICK at t = 0
+    w_post = Y * v / (iG + X * X + Y * Y)
+    assert log[0, 2] == 0.0 and log[0, 3] == pytest.approx(w_post, rel=1e-14)
+    assert hy[2, 1] == pytest.approx(w_post, rel=1e-14) and hy[2, 3] == 0.0
+    ke0 = 0.5 * v * v
+    ke1 = 0.5 * ((Y * w_post) ** 2 + (X * w_post) ** 2 + iG * w_post ** 2)
+    assert ke1 < ke0
+    assert hd[2, 0] == 1                                    # MODE_ROCK after the impulse
+    assert met[18] == 1                                     # one stick-slip transition
