@@ -209,7 +209,16 @@ def event(k, t, y, par, disc, hdr, smp):
             return 0.0, max(sig * dd, 0.0), True
         return sig * y[3], sig * dd, True
     if k == E_LIFT_OFF:
-        return N, 0.0, True
+        # N = A i_G / D: its rate from A' = G' + X w^3 - 2 Y w theta'' and
+        # D' = w (2 X Y + mu_k sigma (Y^2 - X^2)) (grazing, as in ROCK)
+        _ag, _dag, av, dav = ground_rates(t, hdr, smp)
+        X, Y = offsets(y[0], s, par)
+        w = y[1]
+        A = par[P_G] + av - Y * w * w
+        D = par[Q_IG] + X * (X + par[Q_MU_K] * sig * Y)
+        dA = dav + X * w * w * w - 2.0 * Y * w * tdd
+        dD = w * (2.0 * X * Y + par[Q_MU_K] * sig * (Y * Y - X * X))
+        return N, par[Q_IG] * (dA * D - A * dD) / (D * D), True
     return s * y[1], s * tdd, False          # E_PEAK
 
 

@@ -15,6 +15,7 @@ import fastrock as fr
 import hardcases as H
 from fastrock import Friction, Pulse, RigidBlock
 from fastrock.bodies import G_STANDARD as G0
+from fastrock.kernels import layout as L
 from fastrock.models import rigid_friction_par
 from fastrock.solver import Solver
 from test_friction import HF_BODY, HF_GRID, SLIDER, definite, header, one_sine
@@ -590,3 +591,34 @@ def test_painleve_slip_stopped_by_tangential_impact(s):
     assert ke1 < ke0
     assert hd[2, 0] == 1                                    # MODE_ROCK after the impulse
     assert met[18] == 1                                     # one stick-slip transition
+
+
+def test_contact_event_rates_are_the_derivatives():
+    """The N and cone-margin events carry their time derivatives (so the driver finds a dip of N
+    or of mu_s N - |F| between two step ends): against central differences along the flow
+    (kernel rhs) at 300 random states of ROCK and SLIDE_ROCK, with a horizontal one-sine and a
+    vertical half-sine acting (a_g' and a_v' enter), to 1e-6 relative."""
+    from fastrock.excitation import to_header
+    from fastrock.kernels import friction as FK
+    body = RigidBlock.rectangle(0.3, 1.1)
+    par = rigid_friction_par(body, Friction(0.7, 0.5))
+    hdr, smp = to_header(body, Pulse(0.5, 2.0, 1, "one-sine"), Pulse(0.3, 3.0, 1, "half-sine"))
+    rng = np.random.default_rng(3)
+    for _ in range(300):
+        t = rng.uniform(0.01, 0.15)
+        th = rng.uniform(-0.3, 0.3)
+        s = 1 if th > 0 else -1
+        mode = int(rng.choice([L.MODE_ROCK, L.MODE_SLIDE_ROCK]))
+        disc = np.zeros(L.N_DISC, np.int64)
+        disc[L.D_MODE], disc[L.D_PIVOT] = mode, s
+        disc[L.D_SLIP_DIR] = int(rng.choice([-1, 1])) if mode == L.MODE_SLIDE_ROCK else 0
+        y = np.array([th, rng.normal(), 0.0, rng.normal() if mode == L.MODE_SLIDE_ROCK else 0.0])
+        f = np.empty(4)
+        FK.rhs(t, y, par, disc, hdr, smp, f)
+        ks = (FK.E_SLIP_STICK, FK.E_LIFT_OFF) if mode == L.MODE_ROCK else (FK.E_LIFT_OFF,)
+        for k in ks:
+            g, dg, _term = FK.event(k, t, y, par, disc, hdr, smp)
+            e = 1e-6
+            gp = FK.event(k, t + e, y + e * f, par, disc, hdr, smp)[0]
+            gm = FK.event(k, t - e, y - e * f, par, disc, hdr, smp)[0]
+            assert (gp - gm) / (2 * e) == pytest.approx(dg, rel=1e-6, abs=1e-6 * G0), (mode, k)
