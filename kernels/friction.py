@@ -186,19 +186,18 @@ def event(k, t, y, par, disc, hdr, smp):
                 return g, 0.0, True
             if k == E_LIFT_OFF:
                 return np.inf, 0.0, True
-        if k == E_PEAK:
-            tdd, _F, _N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
-            return s * y[1], s * tdd, False
-        # the rates let the driver find a dip between two step ends
-        # (grazing: N or the cone margin briefly negative inside a step)
-        F, N, dF, dN = stick_force_rates(t, y[0], y[1], s, par, hdr, smp)
         if k == E_SLIP_STICK:
+            # the rate lets the driver find a dip of the cone margin between
+            # two step ends (grazing); N <= 0 implies a margin <= 0, so
+            # this also finds every dip of N, and E_LIFT_OFF needs no rate
+            F, N, dF, dN = stick_force_rates(t, y[0], y[1], s, par, hdr, smp)
             g = par[Q_MU_S] * N - abs(F)
             dg = par[Q_MU_S] * dN - (dF if F > 0.0 else -dF)
             return g, dg, True
+        tdd, _F, N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
         if k == E_LIFT_OFF:
-            return N, dN, True
-        return np.inf, 0.0, False
+            return N, 0.0, True
+        return s * y[1], s * tdd, False      # E_PEAK
     tdd, dd, N = slip_rock(t, y[0], y[1], s, sig, par, hdr, smp)
     if k == E_SLIP_STICK:
         if y[3] == 0.0:
