@@ -1,7 +1,10 @@
 """Hard cases for the rigid block with Coulomb friction (physics.md 4.1-4.3): mu -> 0 (1e-6: pure
 sliding, against the closed form d = -double integral of a_g), very large mu (10 and 1e3: the
-frictionless kernel's outcomes), bounded stick-slip chatter near mu g, and a 90 s record at
-dt 0.005.  Every run gets a step budget and must end with a definite status and a finite
+frictionless kernel's outcomes), bounded stick-slip chatter near mu g, a 90 s record at
+dt 0.005, and issue #14's fuzz findings: Painleve at a slip onset (flight, the one consistent
+mode), mu = 1e6 against the frictionless block (equal while its pivot force stays in the cone,
+parting exactly where it would need tension), a flight's last rotation, the pick's sign rules,
+the event rates, and 300 random fuzz-like scenes.  Every run gets a step budget and must end with a definite status and a finite
 history.  CI runs this file a second time under ``NUMBA_BOUNDSCHECK=1``.
 """
 from __future__ import annotations
