@@ -351,6 +351,27 @@ def stop_slip(t, y, s, par, met):
 
 
 @jit
+def slip_from_flat(t, F, par, disc, hdr, smp, met, log, cnt):
+    """theta = theta' = 0 and stick-rock fails (|F| > mu_s N): slip toward
+    sigma = -sgn F, rocking on the corner sigma only if that lifts it
+    (mu_k > b/h and sigma theta'' > 0), else flat (both corners down: a
+    flat slide cannot tip when mu_k <= b/h, physics.md 4.3)."""
+    sigma = -1 if F > 0.0 else 1
+    tdd, _dd, _N = slip_rock(t, 0.0, 0.0, sigma, sigma, par, hdr, smp)
+    if par[Q_MU_K] > par[Q_B] / par[Q_H] and sigma * tdd > 0.0:
+        set_mode(disc, MODE_SLIDE_ROCK, sigma, sigma)
+        if np.isnan(met[M_T_UPLIFT]):
+            met[M_T_UPLIFT] = t
+        met[M_N_STICK_SLIP] += 1
+        log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sigma)
+        return RUNNING
+    set_mode(disc, MODE_SLIDE, 1, sigma)
+    met[M_N_STICK_SLIP] += 1
+    log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sigma)
+    return RUNNING
+
+
+@jit
 def start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt):
     """theta = theta' = 0 (rest or just after an impact): choose REST, SLIDE,
     ROCK or SLIDE_ROCK by the initiation criteria of physics.md 4.3."""
@@ -382,19 +403,7 @@ def start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt):
                 met[M_T_UPLIFT] = t
             log_event(log, cnt, t, EV_UPLIFT, 0.0, 0.0, 0.0, s)
             return RUNNING
-        sigma = -1 if F > 0.0 else 1
-        tdd, _dd, _N = slip_rock(t, 0.0, 0.0, sigma, sigma, par, hdr, smp)
-        if mu_k > b_h and sigma * tdd > 0.0:
-            set_mode(disc, MODE_SLIDE_ROCK, sigma, sigma)
-            if np.isnan(met[M_T_UPLIFT]):
-                met[M_T_UPLIFT] = t
-            met[M_N_STICK_SLIP] += 1
-            log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sigma)
-            return RUNNING
-        set_mode(disc, MODE_SLIDE, 1, sigma)
-        met[M_N_STICK_SLIP] += 1
-        log_event(log, cnt, t, EV_SLIP, 0.0, 0.0, 0.0, sigma)
-        return RUNNING
+        return slip_from_flat(t, F, par, disc, hdr, smp, met, log, cnt)
     if abs(ag) > mu_s * G * (1.0 + UPLIFT_RTOL):
         sigma = -1 if ag > 0.0 else 1
         set_mode(disc, MODE_SLIDE, 1, sigma)
@@ -598,6 +607,14 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         if mode == MODE_ROCK:
             if disc[D_AUX] == 1:
                 return end_jam(t, y, s, par, disc, hdr, smp, met, log, cnt)
+            if y[0] == 0.0 and y[1] == 0.0:
+                # the block has not lifted yet (a rocking start at the tie
+                # mu_s ~ b/h, where the stick-rock margin falls from ~0):
+                # both corners are down, so the flat slide rule applies
+                y[3] = 0.0
+                _tdd, F, _N = stick_rock(t, 0.0, 0.0, s, par, hdr, smp)
+                return slip_from_flat(t, F, par, disc, hdr, smp, met, log,
+                                      cnt)
             # slip onset: stick has left its cone
             code, sig = pick_rocking(t, y, s, par, hdr, smp, False)
             return apply_pick(code, sig, t, y, s, disc, met, log, cnt, True)

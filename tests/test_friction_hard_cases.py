@@ -626,3 +626,28 @@ def test_contact_event_rates_are_the_derivatives():
             gp = FK.event(k, t + e, y + e * f, par, disc, hdr, smp)[0]
             gm = FK.event(k, t - e, y - e * f, par, disc, hdr, smp)[0]
             assert (gp - gm) / (2 * e) == pytest.approx(dg, rel=1e-6, abs=1e-6 * G0), (mode, k)
+
+
+@pytest.mark.parametrize("bh", [0.25, 1.0])
+def test_tie_mu_s_at_b_over_h_never_loops(bh):
+    """mu_s = b/h (1 + eps), eps in {0, +-1e-12, 1e-9}, mu_k = mu_s or 0.9 mu_s, the three pulses,
+    a_p/(g tan alpha) 0.95-12, omega_p/p 0.5-50, both signs: 672 runs per body, all definite.
+    At the tie the stick-rock margin at theta = 0 is ~(mu_s - b/h) G and falls as |a_g| grows
+    past G b/h, so a rocking start from flat slips at once; with mu_k < b/h the slide-rock on
+    that corner rotates back (the other corner is still down) and the impact restarted the
+    rocking at the same instant: 116 of 1344 runs ended failed:transition-loop.  A slip onset
+    before the block has lifted (theta = theta' = 0) now takes the flat rule of physics.md 4.3
+    (slide-rock only if mu_k > b/h and it lifts the corner, else a flat slide, which cannot tip
+    when mu_k <= b/h)."""
+    from fastrock.spectrum import overturning_spectrum
+    body = RigidBlock.rectangle(bh, 1.0, e=None if bh < 0.8 else 0.3)
+    for eps in (0.0, 1e-12, -1e-12, 1e-9):
+        for k in (1.0, 0.9):
+            mu = bh * (1 + eps)
+            for kind in ("one-sine", "half-sine", "one-cosine"):
+                df = overturning_spectrum(body, [0.95, 1.0, 1.05, 1.1, 2.0, 5.0, 12.0], [0.5, 5.0, 25.0, 50.0],
+                                          "both", pulse=kind, friction=Friction(mu, mu * k), progress=False,
+                                          rtol=1e-8)
+                bad = df[df["status"].str.startswith("failed")]
+                assert bad.empty, (eps, k, kind, bad[["amplitude_ratio", "frequency_ratio", "sign", "status"]])
+                assert np.isfinite(df["max_rotation"]).all()
