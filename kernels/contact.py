@@ -125,7 +125,7 @@ import numpy as np
 from .config import jit, jit_parallel
 from .excitation import excitation_end, ground
 from .friction import kinetic as fr_kinetic
-from .friction import routh_impact
+from .friction import routh_general, routh_impact
 from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
                      sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, D_WALL_REST,
@@ -1287,54 +1287,6 @@ def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
 
 
 @jit
-def routh_general(wtt, wtn, wnn, vt, vn, mu_s, mu_k):
-    """Plastic frictional point impact by Routh's incremental method (the
-    algorithm of kernels/friction.routh_impact for any 2x2 contact-space
-    inverse inertia W = [[wtt, wtn], [wtn, wnn]] and contact velocity
-    (vt, vn), vn < 0).  Returns the impulses (pt, pn)."""
-    pt = 0.0
-    pn = 0.0
-    for _phase in range(4):
-        if vn >= 0.0:
-            break
-        if vt == 0.0:
-            if abs(wtn) <= mu_s * wtt:
-                at = 0.0
-                an = wnn - wtn * wtn / wtt
-                rate_t = -wtn / wtt
-            else:
-                sig = 1.0 if wtn > 0.0 else -1.0
-                rate_t = -mu_k * sig
-                at = rate_t * wtt + wtn
-                an = rate_t * wtn + wnn
-        else:
-            sig = 1.0 if vt > 0.0 else -1.0
-            rate_t = -mu_k * sig
-            at = rate_t * wtt + wtn
-            an = rate_t * wtn + wnn
-        if an <= 0.0:
-            det = wtt * wnn - wtn * wtn
-            pt += (-wnn * vt + wtn * vn) / det
-            pn += (wtn * vt - wtt * vn) / det
-            vt = 0.0
-            vn = 0.0
-            break
-        dp = -vn / an
-        if vt * at < 0.0 and -vt / at < dp:
-            dp = -vt / at
-            pt += rate_t * dp
-            pn += dp
-            vn += an * dp
-            vt = 0.0
-            continue
-        pt += rate_t * dp
-        pn += dp
-        vt += at * dp
-        vn = 0.0
-    return pt, pn
-
-
-@jit
 def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     """Base corner j reached the ground moving down in flight (physics.md
     4.6): plastic normal impact with Coulomb friction at j (stick if
@@ -1364,7 +1316,7 @@ def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         wnn = 1.0 + rx * rx / iG
         _gap, vn, vt = point_kin(j, y, par)
         if np.isfinite(par[C_MU_S]):
-            pt, pn = routh_general(wtt, wtn, wnn, vt, vn, par[C_MU_S],
+            pt, pn, _vt = routh_general(wtt, wtn, wnn, vt, vn, par[C_MU_S],
                                    par[C_MU_K])
         else:
             # mu = inf and the stick impulse would pull (L_n < 0): the
@@ -1532,7 +1484,7 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post, kw=2):
         set_cm_velocity(tmp, par, post[0], post[1], post[2])
         _g, vn1, vt1 = point_kin(j, tmp, par)
         if vn1 < 0.0:
-            pt, pn = routh_general(wtt, wtn, wnn, vt1, vn1, mu_s, mu_k)
+            pt, pn, _vt = routh_general(wtt, wtn, wnn, vt1, vn1, mu_s, mu_k)
             post[0] += pt
             post[1] += pn
             post[2] += (ry * pt - rx * pn) / iG

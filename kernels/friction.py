@@ -424,44 +424,40 @@ def kinetic(w, v, s, b, h, iG):
 
 
 @jit
-def routh_impact(pre, vs, s, b, h, iG, mu_s, mu_k):
-    """Plastic frictional impact of the new corner -s by Routh's method
-    (Stronge, Impact Mechanics, 2000, ch. 5): the contact velocity (v_t,
-    v_n) = (vs, 2 s b pre) evolves linearly in the normal impulse with
+def routh_general(wtt, wtn, wnn, vt, vn, mu_s, mu_k):
+    """Plastic frictional point impact by Routh's incremental method
+    (Stronge, Impact Mechanics, 2000, ch. 5) for a 2x2 contact-space inverse
+    inertia W = [[wtt, wtn], [wtn, wnn]] and contact velocity (vt, vn),
+    vn < 0: the contact velocity evolves linearly in the normal impulse with
     friction -mu_k sgn(v_t) while slipping; when v_t reaches 0 the contact
     sticks if mu_s holds, else slips the other way; the impact ends at
     v_n = 0.  A slip that cannot raise v_n (impulsive jam) ends as a stick.
-    Friction then only dissipates.  Returns (theta'+, d'+)."""
-    w11 = 1.0 + h * h / iG
-    w12 = -s * b * h / iG
-    w22 = 1.0 + b * b / iG
-    vt = vs
-    vn = 2.0 * s * b * pre
+    Returns the impulses (pt, pn) and the final tangential velocity."""
     pt = 0.0
     pn = 0.0
     for _phase in range(4):
         if vn >= 0.0:
             break
         if vt == 0.0:
-            if abs(w12) <= mu_s * w11:
+            if abs(wtn) <= mu_s * wtt:
                 at = 0.0
-                an = w22 - w12 * w12 / w11
-                rate_t = -w12 / w11
+                an = wnn - wtn * wtn / wtt
+                rate_t = -wtn / wtt
             else:
-                sig = 1.0 if w12 > 0.0 else -1.0
+                sig = 1.0 if wtn > 0.0 else -1.0
                 rate_t = -mu_k * sig
-                at = rate_t * w11 + w12
-                an = rate_t * w12 + w22
+                at = rate_t * wtt + wtn
+                an = rate_t * wtn + wnn
         else:
             sig = 1.0 if vt > 0.0 else -1.0
             rate_t = -mu_k * sig
-            at = rate_t * w11 + w12
-            an = rate_t * w12 + w22
+            at = rate_t * wtt + wtn
+            an = rate_t * wtn + wnn
         if an <= 0.0:
             # jam: both contact velocities to zero, P = -W^-1 (vt, vn)
-            det = w11 * w22 - w12 * w12
-            pt += (-w22 * vt + w12 * vn) / det
-            pn += (w12 * vt - w11 * vn) / det
+            det = wtt * wnn - wtn * wtn
+            pt += (-wnn * vt + wtn * vn) / det
+            pn += (wtn * vt - wtt * vn) / det
             vt = 0.0
             vn = 0.0
             break
@@ -477,6 +473,18 @@ def routh_impact(pre, vs, s, b, h, iG, mu_s, mu_k):
         pn += dp
         vt += at * dp
         vn = 0.0
+    return pt, pn, vt
+
+
+@jit
+def routh_impact(pre, vs, s, b, h, iG, mu_s, mu_k):
+    """Plastic frictional impact of the new corner -s by Routh's method
+    (``routh_general``) with the contact velocity (v_t, v_n) = (vs, 2 s b
+    pre).  Friction then only dissipates.  Returns (theta'+, d'+)."""
+    w11 = 1.0 + h * h / iG
+    w12 = -s * b * h / iG
+    w22 = 1.0 + b * b / iG
+    pt, pn, vt = routh_general(w11, w12, w22, vs, 2.0 * s * b * pre, mu_s, mu_k)
     post = pre + (-h * pt + s * b * pn) / iG
     return post, vt
 
