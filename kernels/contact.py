@@ -125,7 +125,7 @@ import numpy as np
 from .config import jit, jit_parallel
 from .excitation import excitation_end, ground
 from .friction import kinetic as fr_kinetic
-from .friction import routh_general, routh_impact
+from .friction import corner_impact, routh_general
 from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
                      sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, D_WALL_REST,
@@ -1242,21 +1242,8 @@ def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     met[M_IMPACTS] += 1
     chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
     met[M_T_LAST_IMPACT] = t
-    post = e * pre + (h / i0) * vs
-    lam_x = h * post - (vs + h * pre)
-    lam_y = -s * b * (post + pre)
-    dpost = 0.0
-    if abs(lam_x) > par[C_MU_S] * lam_y:
-        sigma = -1.0 if lam_x > 0.0 else 1.0
-        kk = par[C_MU_K] * sigma * h + s * b
-        post = pre * (iG - kk * s * b) / (iG + kk * s * b)
-        lam_y = -s * b * (post + pre)
-        dpost = vs + h * pre - h * post - par[C_MU_K] * sigma * lam_y
-        if (sigma * dpost < 0.0 or lam_y <= 0.0
-                or fr_kinetic(post, dpost, -s, b, h, iG)
-                > fr_kinetic(pre, vs, s, b, h, iG)):
-            post, dpost = routh_impact(pre, vs, s, b, h, iG, par[C_MU_S],
-                                       par[C_MU_K])
+    post, dpost = corner_impact(pre, vs, s, b, h, iG, i0, e, par[C_MU_S],
+                                par[C_MU_K])
     check_energy(fr_kinetic(pre, vs, s, b, h, iG),
                  fr_kinetic(post, dpost, -s, b, h, iG), met)
     log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)

@@ -490,6 +490,33 @@ def routh_impact(pre, vs, s, b, h, iG, mu_s, mu_k):
 
 
 @jit
+def corner_impact(pre, vs, s, b, h, iG, i0, e, mu_s, mu_k):
+    """(theta'+, d'+) of the ground impact at the new corner -s, per unit
+    mass, from theta'- = pre and the slip velocity vs: a plastic impact with
+    stick at the new corner (in ROCK vs = 0 and this is Housner's map), then
+    the impulse-ratio check: the impact slips when friction cannot supply
+    the tangential impulse."""
+    post = e * pre + (h / i0) * vs
+    lam_x = h * post - (vs + h * pre)
+    lam_y = -s * b * (post + pre)
+    dpost = 0.0
+    if abs(lam_x) > mu_s * lam_y:
+        sigma = -1.0 if lam_x > 0.0 else 1.0
+        k = mu_k * sigma * h + s * b
+        post = pre * (iG - k * s * b) / (iG + k * s * b)
+        lam_y = -s * b * (post + pre)
+        dpost = vs + h * pre - h * post - mu_k * sigma * lam_y
+        # the algebraic slip rule (physics.md 4.3) presumes the slip
+        # direction; where the contact itself would slip otherwise it can
+        # contradict sigma and create energy: Routh's incremental impact
+        if (sigma * dpost < 0.0 or lam_y <= 0.0
+                or kinetic(post, dpost, -s, b, h, iG)
+                > kinetic(pre, vs, s, b, h, iG)):
+            post, dpost = routh_impact(pre, vs, s, b, h, iG, mu_s, mu_k)
+    return post, dpost
+
+
+@jit
 def impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     """Ground impact at theta = 0 (physics.md 1 and 4.3)."""
     s = disc[D_PIVOT]
@@ -503,28 +530,9 @@ def impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
     met[M_T_LAST_IMPACT] = t
     y[0] = 0.0
-    # plastic impact with stick at the new corner (in ROCK the slip velocity
-    # is 0 and this is Housner's map), then the impulse-ratio check: the
-    # impact slips when friction cannot supply the tangential impulse
     vs = y[3]
-    post = e * pre + (h / i0) * vs
-    lam_x = h * post - (vs + h * pre)
-    lam_y = -s * b * (post + pre)
-    dpost = 0.0
-    if abs(lam_x) > par[Q_MU_S] * lam_y:
-        sigma = -1.0 if lam_x > 0.0 else 1.0
-        k = par[Q_MU_K] * sigma * h + s * b
-        post = pre * (iG - k * s * b) / (iG + k * s * b)
-        lam_y = -s * b * (post + pre)
-        dpost = vs + h * pre - h * post - par[Q_MU_K] * sigma * lam_y
-        # the algebraic slip rule (physics.md 4.3) presumes the slip
-        # direction; where the contact itself would slip otherwise it can
-        # contradict sigma and create energy: Routh's incremental impact
-        if (sigma * dpost < 0.0 or lam_y <= 0.0
-                or kinetic(post, dpost, -s, b, h, iG)
-                > kinetic(pre, vs, s, b, h, iG)):
-            post, dpost = routh_impact(pre, vs, s, b, h, iG, par[Q_MU_S],
-                                       par[Q_MU_K])
+    post, dpost = corner_impact(pre, vs, s, b, h, iG, i0, e, par[Q_MU_S],
+                                par[Q_MU_K])
     y[1] = post
     y[3] = dpost
     check_energy(kinetic(pre, vs, s, b, h, iG), kinetic(post, dpost, -s, b, h, iG),
