@@ -261,10 +261,12 @@ class FlexibleBody:
         """The rigid block of the same alpha and p, with the restitution the
         impact map tends to as omega_n/p -> infinity: cos^2(alpha) for the
         full-contact map, cos(2 alpha) (times e) for the pivot switch (point
-        mass; physics.md 3.5)."""
+        mass; physics.md 3.5).  Its outline is the body's, b = B and h = H
+        (where a wall touches it)."""
         if self.impact == "full-contact":
             e = math.cos(self.alpha) ** 2
         else:
             k = self.rotary_inertia_ratio
             e = self.e * (math.cos(2 * self.alpha) + k) / (1.0 + k)
-        return RigidBlock(alpha=self.alpha, p=self.p, e=e, g=self.g, theta_over=self.theta_over)
+        return RigidBlock(alpha=self.alpha, p=self.p, e=e, g=self.g, theta_over=self.theta_over,
+                          b=self.B, h=self.H)

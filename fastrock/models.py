@@ -60,6 +60,23 @@ def flexible_friction_par(body: FlexibleBody, friction):
     return par
 
 
+def flexible_wall_par(body: FlexibleBody, wall):
+    """Parameters of the flexible body against a wall (kernels/flexible_wall.py)."""
+    from fastrock.kernels import layout as K
+    kind = wall.contact(body)
+    if kind == "hogan":
+        raise ValueError("wall: gap = 0 (Hogan's one-sided rocking) is available for RigidBlock only; "
+                         "a FlexibleBody needs gap > 0")
+    if wall.friction != 0.0:
+        raise ValueError("wall: friction > 0 at the wall contact is not modelled yet (the wall is "
+                         "frictionless)")
+    par = flexible_par(body, n_par=K.N_PAR_FLEXIBLE_WALL)
+    par[K.FW_WALL_SIDE] = float(wall.side)
+    par[K.FW_THETA_W] = wall.limit_angle(body)
+    par[K.FW_E_W] = wall.restitution
+    return par
+
+
 def rigid_friction_par(body: RigidBlock, friction):
     from fastrock.kernels import layout as K
     if friction.lift_off != "stop":

@@ -141,10 +141,9 @@ _BY_SCENE: dict[tuple, Model] = {}
 
 #: Combinations that no model runs yet, with the reason the error gives.
 NOT_AVAILABLE = {
-    ("flexible", frozenset({"wall"})):
-        "wall= is not available for FlexibleBody yet (issue #13)",
     ("flexible", frozenset({"wall", "friction"})):
-        "wall= is not available for FlexibleBody yet (issue #13)",
+        "a wall together with friction is available for RigidBlock only (the contact model); a "
+        "FlexibleBody takes wall= or friction=, not both yet (issue #13)",
     ("flexible", frozenset({"flight"})):
         "lift_off='flight' is available for RigidBlock only: free flight of the flexible body (the "
         "column with its base) is not in the contact core yet; use 'stop' or 'hold'",
@@ -264,6 +263,11 @@ def _flexible(body, fx, mass):
     return flexible_par(body)
 
 
+def _flexible_wall(body, fx, mass):
+    from .models import flexible_wall_par
+    return flexible_wall_par(body, fx["wall"])
+
+
 def _flexible_friction(body, fx, mass):
     from .models import flexible_friction_par
     return flexible_friction_par(body, fx["friction"])
@@ -325,6 +329,13 @@ register(Model(
     cli_options=("--alpha", "--p", "--e") + _FLEX_CLI,
     toml_keys=_FLEX_TOML,
     summary="elastic column on a rocking base (SDOF oscillator on a rigid block)"))
+register(Model(
+    "flexible_wall", "flexible_wall", "flexible", frozenset({"wall"}), ("u", "u_dot", "theta", "theta_dot"),
+    _flexible_wall,
+    columns=_FLEX_COLUMNS + ("toward_wall", "max_rotation_toward_wall", "max_rotation_away_from_wall"),
+    outcomes=("safe", "mode1", "mode2", "leaning", "flight", "failed"),
+    cli_options=("--alpha", "--p", "--e") + _FLEX_CLI + _WALL_CLI, toml_keys=_FLEX_TOML + ("wall",),
+    summary="flexible body rocking against a rear wall (its 2B x 2H outline touches the wall)"))
 register(Model(
     "flexible_friction", "flexible_friction", "flexible", frozenset({"friction"}),
     ("u", "u_dot", "theta", "theta_dot", "d", "d_dot"), _flexible_friction,

@@ -84,6 +84,8 @@ class Wall:
 
     @staticmethod
     def _half_height(body):
+        if getattr(body, "kind", "") == "flexible":
+            return float(body.H)    # the outline: the 2B x 2H box turning with the base
         h = getattr(body, "h", None)
         if h is None:
             raise ValueError("a wall needs the block's half-height h to find the contact angle: build "

@@ -43,7 +43,7 @@ from .layout import (D_MODE, D_SLIP_DIR, MODE_REST, MODE_ROCK, MODE_SLIDE,
                      M_N_EVENTS, M_NFEV, M_NREJECT, M_NSTEPS, M_T_EXC_END, N_LOG, N_MET,
                      M_ENERGY_GAINS, M_T_FINAL, O_ATOL, O_DT_FIXED, O_MAX_STEP, O_MAX_STEPS,
                      FAIL_UNSTABLE, FAIL_INTERRUPTED, M_ERR_FIXED, M_DT_STABLE,
-                     O_ABORT,
+                     O_ABORT, O_EPS_OMEGA, O_EPS_T,
                      O_RECORD_BREAKS, O_RTOL, O_T0, O_T_END, RUNNING,
                      SAFE_MOVING, SAFE_NO_UPLIFT, SAFE_REST)
 
@@ -107,6 +107,16 @@ def final_status(disc, met):
             return SAFE_NO_UPLIFT
         return SAFE_REST
     return SAFE_MOVING
+
+
+@jit
+def is_chatter(t, post, opt, met):
+    """Chatter rule of physics.md 7 at one contact: the velocity after the
+    impact is below eps_omega, or two impacts came closer than eps_t; books
+    the impact time."""
+    c = abs(post) < opt[O_EPS_OMEGA] or t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
+    met[M_T_LAST_IMPACT] = t
+    return c
 
 
 @jit

@@ -192,6 +192,12 @@ F_LIFT_OFF = 16     # LIFT_OFF_STOP: stop with FLIGHT when N reaches 0 while
 #                     rocking; LIFT_OFF_HOLD: hold the pivot down (bilateral,
 #                     as the classic models do) with no friction while N < 0
 N_PAR_FLEXIBLE_FRICTION = 18
+
+# flexible body against a rear wall (kernels.flexible_wall), after the flexible entries
+FW_WALL_SIDE = 14   # w = +1 / -1
+FW_THETA_W = 15     # rad, limit angle of the body's outline (the 2B x 2H box)
+FW_E_W = 16         # wall restitution
+N_PAR_FLEXIBLE_WALL = 18
 LIFT_OFF_STOP = 0
 LIFT_OFF_HOLD = 1
 
@@ -233,3 +239,6 @@ LIFT_OFF_FLIGHT = 2   # Friction(lift_off="flight"): the contact model flies
 M_N_FLIGHTS = M_N_LIFT_OFF      # number of flights
 M_T_FLIGHT = M_T_UNLOADED       # s in flight
 M_MAX_JUMP = 31                 # m, largest rise of the CM above its rest height in a flight
+# flexible body against a wall: pivot-switch wall impacts replaced by the
+# energy-safe map (kernels.flexible_wall)
+M_WALL_CAPPED = 31

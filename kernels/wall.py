@@ -61,14 +61,13 @@ import numpy as np
 
 from .config import jit, jit_generic, jit_parallel
 from .excitation import excitation_end, ground
-from .hybrid import (check_energy, final_status, integrate_hybrid, log_event,
-                     sweep_rows)
+from .hybrid import (check_energy, final_status, integrate_hybrid, is_chatter,
+                     log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_STATIC, D_WALL_REST, EV_FLIGHT,
                      EV_REST, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
                      FLIGHT, LEANING, MODE_REST, MODE_ROCK, MODE_WALL_REST,
-                     M_IMPACTS, M_T_LAST_IMPACT, M_WALL_IMPACTS, N_DISC,
-                     O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T, O_T0, RUNNING,
-                     SAFE_BOUNDED, SAFE_REST)
+                     M_IMPACTS, M_WALL_IMPACTS, N_DISC, O_EARLY_EXIT, O_T0,
+                     RUNNING, SAFE_BOUNDED, SAFE_REST)
 from .rigid import (K_FLIGHT, K_IMPACT, K_OVERTURN, P_ALPHA, P_E, P_E_W, P_G,
                     P_HOGAN, P_THETA_OVER, P_THETA_W, P_WALL_SIDE,
                     free_energy, ground_impact, init_state as rigid_init_state,
@@ -165,14 +164,6 @@ def release_from_wall(t, y, par, disc, log, cnt):
     y[0] = w * par[P_THETA_W]
     y[1] = 0.0
     log_event(log, cnt, t, EV_WALL_RELEASE, 0.0, 0.0, y[0], disc[D_PIVOT])
-
-
-@jit
-def is_chatter(t, post, opt, met):
-    """Chatter rule of physics.md 7 (any two impacts closer than eps_t)."""
-    c = abs(post) < opt[O_EPS_OMEGA] or t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
-    met[M_T_LAST_IMPACT] = t
-    return c
 
 
 @jit

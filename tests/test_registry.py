@@ -43,7 +43,7 @@ def test_a_scene_selects_exactly_its_model(body, kw, name):
 def test_every_entry_names_its_kernels_and_columns():
     from fastrock.spectrum import SPECTRUM_COLUMNS
     assert set(registry.MODELS) == {"rigid", "rigid_wall", "rigid_friction", "contact", "flexible",
-                                    "flexible_friction", "two_spring", "switching", "linear_sdof"}
+                                    "flexible_friction", "flexible_wall", "two_spring", "switching", "linear_sdof"}
     for m in registry.MODELS.values():
         mod = m.load()
         assert callable(getattr(mod, m.simulate_entry)) and callable(getattr(mod, m.sweep_entry))
@@ -68,8 +68,8 @@ def test_cli_and_toml_know_every_option_an_entry_names():
 
 
 @pytest.mark.parametrize("body,kw,match", [
-    (FLEX, {"wall": Wall(gap=0.01), "friction": Friction(0.4)}, "not available for FlexibleBody"),
-    (FLEX, {"wall": Wall(gap=0.01)}, "not available for FlexibleBody"),
+    (FLEX, {"wall": Wall(gap=0.01), "friction": Friction(0.4)}, "RigidBlock only"),
+    (FLEX, {"wall": Wall(gap=0.0)}, "Hogan's one-sided rocking"),
     (FLEX, {"foundation": LinearVibration(1e5)}, "RigidBlock only"),
     (BLOCK, {"foundation": LinearVibration(1e5), "friction": Friction(0.3)}, "holds? the base horizontally"),
     (BLOCK, {"foundation": "stiff"}, "foundation must be"),
