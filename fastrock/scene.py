@@ -60,6 +60,8 @@ class Scene:
             out.append("wall")
         if self.friction is not None and self.friction.sliding_possible:
             out.append("friction")
+        if self.friction is not None and self.friction.lift_off == "flight":
+            out.append("flight")
         if self.vertical is not None:
             out.append("vertical")
         return tuple(out)

@@ -41,6 +41,12 @@ PROBE = textwrap.dedent("""
         sc = Scene(fr.FlexibleBody(0.2, 2.0, 9.0, 0.05), pulse, friction=fr.Friction(0.5, lift_off="hold"))
     elif case == "wall":
         sc = Scene(fr.RigidBlock.rectangle(0.2, 1.0), pulse, wall=fr.Wall(gap=0.02))
+    elif case == "flexible-wall":
+        sc = Scene(fr.FlexibleBody(0.2, 2.0, 9.0, 0.05), pulse, wall=fr.Wall(gap=0.3))
+    elif case == "wall-friction":
+        sc = Scene(fr.RigidBlock.rectangle(0.2, 1.0), pulse, wall=fr.Wall(gap=0.02), friction=fr.Friction(0.3))
+    elif case == "flight":
+        sc = Scene(fr.RigidBlock.rectangle(0.2, 1.0), pulse, friction=fr.Friction(float("inf"), lift_off="flight"))
     elif case == "vertical":
         sc = Scene(fr.RigidBlock(0.2, 2.0), pulse, vertical=fr.Pulse(0.2, 8.0, amplitude_unit="g",
                                                                      frequency_unit="rad/s"))
@@ -62,11 +68,15 @@ EXPECTED = {
     "flexible": ("flexible", ["flexible"], "flexible_simulate"),
     "flexible-friction": ("flexible_friction", ["flexible", "friction"], "flexible_friction_simulate"),
     "wall": ("rigid_wall", ["wall"], "rigid_wall_simulate"),
+    "flexible-wall": ("flexible_wall", ["flexible", "wall"], "flexible_wall_simulate"),
+    "wall-friction": ("contact", ["wall", "friction"], "contact_simulate"),
+    "flight": ("contact", ["flight"], "contact_simulate"),
     "vertical": ("rigid", ["vertical"], "rigid_simulate"),
     "two-spring": ("two_spring", ["foundation:two-spring"], "two_spring_simulate"),
 }
 MODEL_MODULES = {"fastrock.kernels.rigid", "fastrock.kernels.flexible", "fastrock.kernels.friction",
-                 "fastrock.kernels.wall", "fastrock.kernels.foundation", "fastrock.kernels.flexible_friction"}
+                 "fastrock.kernels.wall", "fastrock.kernels.foundation", "fastrock.kernels.flexible_friction",
+                 "fastrock.kernels.flexible_wall", "fastrock.kernels.contact"}
 
 
 def probe(case, tmp_path):
@@ -93,5 +103,9 @@ def test_scene_runs_and_compiles_only_its_kernel(case, tmp_path):
               "flexible_friction": {"fastrock.kernels.rigid", "fastrock.kernels.flexible",
                                     "fastrock.kernels.friction", "fastrock.kernels.flexible_friction"},
               "rigid_wall": {"fastrock.kernels.rigid", "fastrock.kernels.wall"},
+              "flexible_wall": {"fastrock.kernels.rigid", "fastrock.kernels.flexible",
+                                "fastrock.kernels.flexible_wall"},
+              # the contact model reuses the friction model's impact maps (Routh, corner impact)
+              "contact": {"fastrock.kernels.rigid", "fastrock.kernels.friction", "fastrock.kernels.contact"},
               "two_spring": {"fastrock.kernels.rigid", "fastrock.kernels.foundation"}}[kernel]
     assert set(rep["modules"]) & MODEL_MODULES == needed
