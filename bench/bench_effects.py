@@ -231,6 +231,39 @@ def flexible_level(n, repeats):
     return dict(plain=t[0], off=t[1], n_runs=n * n)
 
 
+# ---------------------------------------------------------------- 5. the newer effects, off and inert
+# (body, effect keyword arguments "off" (must select the plain model), "inert" (the effect's own
+# model, never touching what it adds), plain model name)
+NEWER = {
+    "flexible wall": (FLEX, {"wall": None}, {"wall": Wall(gap=2.0 * FLEX.H)}, "flexible"),
+    "flight": (BLOCK, {"friction": Friction(math.inf, lift_off="stop")},
+               {"friction": Friction(math.inf, lift_off="flight")}, "rigid"),
+}
+
+
+def newer_spectrum(effect, n, kw):
+    body = NEWER[effect][0]
+    amps, freqs = grid(n)
+    amps = amps * 0.5     # below lift-off: the flight effect stays inert (checked: no flights)
+    return fr.overturning_spectrum(body, amps, freqs, sign=1, rtol=RTOL, t_after=T_AFTER, progress=False, **kw)
+
+
+def newer_level(effect, n, repeats):
+    """plain (no effect keyword), off (the effect switched off: the plain model, checked) and
+    inert (the effect's model on cells where the effect never acts: same statuses, checked)."""
+    body, off, inert, plain_model = NEWER[effect]
+    d0 = newer_spectrum(effect, n, {})
+    d1 = newer_spectrum(effect, n, off)
+    d2 = newer_spectrum(effect, n, inert)
+    assert d0.attrs["kernel"] == d1.attrs["kernel"] == plain_model
+    assert list(d0.status) == list(d1.status)
+    same = list(d0.outcome) == list(d2.outcome)
+    t = ratios.with_threads(1, lambda: interleaved([lambda: newer_spectrum(effect, n, {}),
+                                                    lambda: newer_spectrum(effect, n, off),
+                                                    lambda: newer_spectrum(effect, n, inert)], repeats))
+    return dict(plain=t[0], off=t[1], inert=t[2], inert_kernel=d2.attrs["kernel"], same_outcome=same)
+
+
 # ---------------------------------------------------------------- report
 def report(n=100, n_kernel=40, repeats=7, run_repeats=30):
     load0 = ratios.loadavg()
@@ -260,6 +293,13 @@ def report(n=100, n_kernel=40, repeats=7, run_repeats=30):
     print(f"[flexible friction] {min(n, 40)}x{min(n, 40)} spectrum of a flexible body (omega_n/p = 9, "
           f"m_b = 0.1 m): no friction {ratios.fmt_t(fl['plain'].cpu)}, Friction(inf) {ratios.fmt_t(fl['off'].cpu)} "
           f"(x{fl['off'].cpu / fl['plain'].cpu:.3f}, same kernel and statuses)\n", flush=True)
+    for effect in NEWER:
+        nl = newer_level(effect, min(n, 40), repeats)
+        f = ratios.fmt_t
+        print(f"[{effect}] {min(n, 40)}x{min(n, 40)} spectrum: plain {f(nl['plain'].cpu)}, off "
+              f"{f(nl['off'].cpu)} (x{nl['off'].cpu / nl['plain'].cpu:.3f}, same kernel and statuses), inert "
+              f"{f(nl['inert'].cpu)} (x{nl['inert'].cpu / nl['plain'].cpu:.2f}, kernel {nl['inert_kernel']}, "
+              f"same outcomes {nl['same_outcome']})\n", flush=True)
     load1 = ratios.loadavg()
     print(f"load average at the end {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}\n")
     print(markdown(rows, n, load0, load1))
@@ -304,6 +344,15 @@ def test_flexible_friction_off_within_5_percent():
     ratio = fl["off"].cpu / fl["plain"].cpu
     print(f"\nflexible Friction(inf) / no friction (CPU, 1 thread, 30x30 spectrum): {ratio:.3f}")
     assert ratio <= 1.05
+
+
+@pytest.mark.parametrize("effect", list(NEWER))
+def test_newer_effect_off_within_5_percent(effect):
+    nl = newer_level(effect, 30, repeats=3)
+    ratio = nl["off"].cpu / nl["plain"].cpu
+    print(f"\n{effect} off / plain (CPU, 1 thread, 30x30 spectrum): {ratio:.3f}; inert / plain "
+          f"{nl['inert'].cpu / nl['plain'].cpu:.2f} ({nl['inert_kernel']}, same outcomes {nl['same_outcome']})")
+    assert ratio <= 1.05 and nl["same_outcome"]
 
 
 @pytest.mark.parametrize("effect", list(EFFECTS))
