@@ -1,6 +1,7 @@
 """All Numba compiler options live here, with environment overrides.
 
-``FASTROCK_CACHE=0`` disables the on-disk cache (``NUMBA_CACHE_DIR`` moves it).
+``FASTROCK_CACHE=0`` disables the on-disk cache (``NUMBA_CACHE_DIR`` moves it;
+the kernels go into a subfolder named by the hash of all kernel sources).
 ``FASTROCK_DEBUG=1`` compiles the impact energy checks in (never cached).
 ``NUMBA_BOUNDSCHECK=1`` and ``NUMBA_DISABLE_JIT=1`` are honoured by Numba itself.
 """
@@ -18,6 +19,33 @@ CACHE = os.environ.get("FASTROCK_CACHE", "1") != "0" and not DEBUG
 # inside a kernel (an exception in nopython code leaks and cannot be handled
 # per run in a prange sweep).
 _OPTIONS = dict(cache=CACHE, nogil=True, error_model="numpy", fastmath=False)
+
+
+def _kernel_cache_dir(here=None):
+    """A cache folder keyed by the hash of every kernel source file.
+
+    Numba stamps a cached entry kernel with its own source file only, but
+    the entry kernels inline the driver (hybrid.py), the integrator and
+    the shared pieces of other modules: an edit there would load stale
+    machine code.  Keying the folder by all the sources makes any edit (or
+    a new release) compile afresh.  The folder lives under
+    ``NUMBA_CACHE_DIR`` if set, else under the user's cache folder."""
+    import hashlib
+    from pathlib import Path
+    here = Path(here or Path(__file__).resolve().parent)
+    digest = hashlib.sha256()
+    for src in sorted(here.glob("*.py")):
+        digest.update(src.name.encode())
+        digest.update(src.read_bytes())
+    base = os.environ.get("NUMBA_CACHE_DIR") or os.path.join(
+        os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"),
+        "fastrock")
+    return os.path.join(base, "kernels-" + digest.hexdigest()[:16])
+
+
+if CACHE:
+    import numba
+    numba.config.CACHE_DIR = _kernel_cache_dir()
 
 
 def jit(func):

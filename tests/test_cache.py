@@ -95,3 +95,19 @@ def test_rigid_simulate_does_not_import_wall_kernel(two_runs):
         assert not run["wall_imported"], run["kernel_modules"]
         assert "fastrock.kernels.rigid" in run["kernel_modules"]
         assert set(run["kernel_modules"]) <= RIGID_KERNEL_MODULES, run["kernel_modules"]
+
+
+def test_cache_folder_follows_every_kernel_source(tmp_path, monkeypatch):
+    """Numba stamps a cached kernel with its own file only; the entry kernels inline the driver
+    and helpers of other files, so the cache folder is keyed by all kernel sources: editing any
+    one of them (here the driver) moves it."""
+    import shutil
+    from fastrock.kernels import config
+    src = tmp_path / "kernels"
+    shutil.copytree(os.path.dirname(config.__file__), src, ignore=shutil.ignore_patterns("__pycache__"))
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "cache"))
+    before = config._kernel_cache_dir(src)
+    assert before.startswith(str(tmp_path / "cache")) and before == config._kernel_cache_dir(src)
+    with open(src / "hybrid.py", "a") as f:
+        f.write("\n# an edit\n")
+    assert config._kernel_cache_dir(src) != before
