@@ -60,6 +60,16 @@ def flexible_friction_par(body: FlexibleBody, friction):
     return par
 
 
+def flexible_flight_par(body: FlexibleBody, friction):
+    """Parameters of the flexible body with friction and free flight (kernels/flexible_flight.py):
+    the flexible-friction vector with lift_off = "flight"; mu_s may be inf (it never slips)."""
+    from fastrock.kernels import layout as K
+    if friction.lift_off != "flight":
+        raise ValueError("the flexible_flight model needs Friction(lift_off='flight')")
+    par = flexible_friction_par(body, friction)
+    return par[: K.N_PAR_FLEXIBLE_FLIGHT].copy()
+
+
 def flexible_wall_par(body: FlexibleBody, wall):
     """Parameters of the flexible body against a wall (kernels/flexible_wall.py)."""
     from fastrock.kernels import layout as K

@@ -144,12 +144,6 @@ NOT_AVAILABLE = {
     ("flexible", frozenset({"wall", "friction"})):
         "a wall together with friction is available for RigidBlock only (the contact model); a "
         "FlexibleBody takes wall= or friction=, not both yet (issue #13)",
-    ("flexible", frozenset({"flight"})):
-        "lift_off='flight' is available for RigidBlock only: free flight of the flexible body (the "
-        "column with its base) is not in the contact core yet; use 'stop' or 'hold'",
-    ("flexible", frozenset({"friction", "flight"})):
-        "lift_off='flight' is available for RigidBlock only: free flight of the flexible body (the "
-        "column with its base) is not in the contact core yet; use 'stop' or 'hold'",
     ("rigid", frozenset({"foundation", "wall"})):
         "a wall beside a block on a flexible foundation is not available yet (issue #13)",
     ("rigid", frozenset({"foundation", "friction"})):
@@ -273,6 +267,11 @@ def _flexible_friction(body, fx, mass):
     return flexible_friction_par(body, fx["friction"])
 
 
+def _flexible_flight(body, fx, mass):
+    from .models import flexible_flight_par
+    return flexible_flight_par(body, fx.get("friction") or fx.get("flight"))
+
+
 def _contact(body, fx, mass):
     from .models import contact_par
     return contact_par(body, fx.get("friction") or fx.get("flight"), fx.get("wall"))
@@ -344,6 +343,16 @@ register(Model(
     cli_options=("--alpha", "--p", "--e") + _FLEX_CLI + _FRICTION_CLI,
     toml_keys=_FLEX_TOML + ("friction",),
     summary="flexible body whose base can slide: rest, slide, rock, slide-rock"))
+register(Model(
+    "flexible_flight", "flexible_flight", "flexible", frozenset({"friction", "flight"}),
+    ("u", "u_dot", "theta", "theta_dot", "d", "d_dot", "z", "z_dot"), _flexible_flight,
+    columns=_FLEX_COLUMNS + _FRICTION_COLUMNS + ("flights", "time_flight", "max_jump"),
+    outcomes=("safe", "slide", "mode1", "mode2", "failed"),
+    cli_options=("--alpha", "--p", "--e") + _FLEX_CLI + _FRICTION_CLI,
+    toml_keys=_FLEX_TOML + ("friction",),
+    summary="flexible body whose base can slide and leave the ground: rest, slide, rock, slide-rock, "
+            "free flight of column and base, landing (plastic, Coulomb friction)",
+    also=(frozenset({"flight"}),)))
 for _name, _states, _what in (
         ("two_spring", ("y", "y_dot", "theta", "theta_dot"),
          "rigid block on two tensionless corner spring-dashpots (Winkler-type foundation)"),

@@ -242,3 +242,6 @@ M_MAX_JUMP = 31                 # m, largest rise of the CM above its rest heigh
 # flexible body against a wall: pivot-switch wall impacts replaced by the
 # energy-safe map (kernels.flexible_wall)
 M_WALL_CAPPED = 31
+# flexible body with friction and free flight (kernels.flexible_flight): the
+# flexible-friction vector with F_LIFT_OFF = LIFT_OFF_FLIGHT (mu_s may be inf)
+N_PAR_FLEXIBLE_FLIGHT = N_PAR_FLEXIBLE_FRICTION
