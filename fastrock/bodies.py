@@ -184,9 +184,10 @@ class FlexibleBody:
     def __post_init__(self):
         a = V.in_open("alpha", self.alpha, 0.0, math.pi / 2, hi_label="pi/2")
         V.positive("p", self.p)
-        if not math.isfinite(float(self.omega_n_over_p)):
+        w = self.omega_n_over_p
+        if V._is_number(w) and not isinstance(w, bool) and math.isinf(float(w)):
             raise ValueError("omega_n_over_p must be finite; use fastrock.RigidBlock for a rigid body")
-        V.positive("omega_n_over_p", self.omega_n_over_p)
+        V.positive("omega_n_over_p", w)
         V.non_negative("zeta", self.zeta)
         V.choice("impact", self.impact, IMPACT_MAPS)
         V.positive("g", self.g)
@@ -215,6 +216,7 @@ class FlexibleBody:
         B = V.positive("B", B)
         H = V.positive("H", H)
         I_m = V.non_negative("I_m", I_m)
+        V.positive("g", g)
         R0 = math.hypot(B, H)
         p = math.sqrt(m * g * R0 / (m * R0 * R0 + I_m))
         wn = math.sqrt(K / m)
