@@ -22,6 +22,7 @@ PULSE_KINDS = {
 }
 AMPLITUDE_UNITS = ("g", "m/s2", "g_tan_alpha")
 FREQUENCY_UNITS = ("Hz", "rad/s", "omega_p/p")
+G_STANDARD = 9.80665
 ACCELERATION_UNITS = {"g": None, "m/s2": 1.0, "cm/s2": 0.01, "gal": 0.01, "mm/s2": 0.001}
 
 
@@ -50,15 +51,27 @@ class Pulse:
         V.choice("kind", self.kind, PULSE_KINDS)
         V.choice("amplitude_unit", self.amplitude_unit, AMPLITUDE_UNITS)
         V.choice("frequency_unit", self.frequency_unit, FREQUENCY_UNITS)
-        V.non_negative("amplitude", self.amplitude)
+        amp = V.non_negative("amplitude", self.amplitude)
+        if self.amplitude_unit != "g_tan_alpha":     # that one is checked with the body (check)
+            V.acceleration("amplitude", amp * (G_STANDARD if self.amplitude_unit == "g" else 1.0),
+                           G_STANDARD, "the pulse amplitude")
         V.sign("sign", self.sign)
         V.non_negative("t_start", self.t_start)
         if self.kind == "rectangular":
             if self.duration is None:
                 raise ValueError("duration [s] is required for a rectangular pulse")
-            V.positive("duration", self.duration)
+            V.run_time("duration", V.positive("duration", self.duration), "the pulse")
         else:
-            V.positive("frequency", self.frequency)
+            f = V.positive("frequency", self.frequency)
+            if self.frequency_unit != "omega_p/p":
+                w = 2 * math.pi * f if self.frequency_unit == "Hz" else f
+                V.run_time("frequency", (math.pi if self.kind == "half-sine" else 2 * math.pi) / w, "the pulse")
+
+    def check(self, body):
+        """Bounds that need the body: the amplitude in m/s^2 and the pulse length."""
+        V.acceleration("amplitude", self.amplitude_si(body), body.g, "the pulse amplitude")
+        V.run_time("duration" if self.kind == "rectangular" else "frequency", self.pulse_duration(body),
+                   "the pulse")
 
     def amplitude_si(self, body):
         if self.amplitude_unit == "g":
@@ -131,6 +144,12 @@ class SampledMotion:
         return cls(np.asarray(record.acc, float), record.dt, "m/s2", scale, t_start,
                    getattr(record, "name", ""))
 
+    def check(self, body):
+        """Bounds that need the body (its g): the peak acceleration and the record length."""
+        peak = float(np.max(np.abs(self.samples_si(body)))) * abs(float(self.scale))
+        V.acceleration("acc * scale", peak, body.g, "the peak ground acceleration")
+        V.run_time("dt", (self.acc.size - 1) * self.dt, "the record")
+
     def samples_si(self, body):
         f = ACCELERATION_UNITS[self.unit]
         return self.acc * (body.g if f is None else f)
@@ -149,13 +168,13 @@ class SampledMotion:
         return self.t_start + (self.acc.size - 1) * self.dt
 
 
-def as_excitation(obj):
+def as_excitation(obj, name="excitation"):
     """Accept a Pulse, SampledMotion, GroundMotion or None."""
     if obj is None or isinstance(obj, (Pulse, SampledMotion)):
         return obj
     if hasattr(obj, "acc") and hasattr(obj, "dt"):
         return SampledMotion.from_record(obj)
-    raise ValueError(f"excitation must be a Pulse, SampledMotion or GroundMotion, got {type(obj).__name__}")
+    raise ValueError(f"{name} must be a Pulse, SampledMotion or GroundMotion, got {type(obj).__name__}")
 
 
 #: float64 must resolve time at the end of an excitation to this fraction of
@@ -180,10 +199,12 @@ def to_header(body, horizontal, vertical=None):
     hdr = np.zeros(L.N_EXC)
     chunks = []
     offset = 0
-    for c, exc in ((L.H_CHANNEL, as_excitation(horizontal)), (L.V_CHANNEL, as_excitation(vertical))):
+    for c, exc in ((L.H_CHANNEL, as_excitation(horizontal)),
+                   (L.V_CHANNEL, as_excitation(vertical, "vertical"))):
         if exc is None:
             continue
         _check_time_resolution(exc, body)
+        exc.check(body)
         if isinstance(exc, SampledMotion):
             s = exc.samples_si(body)
             exc.fill_header(hdr, c, body, offset)
@@ -205,7 +226,7 @@ def match_components(horizontal, vertical, resample=False):
     samples (zero outside its own span, so vertical motion after the
     horizontal record ends is dropped).
     """
-    h, v = as_excitation(horizontal), as_excitation(vertical)
+    h, v = as_excitation(horizontal), as_excitation(vertical, "vertical")
     if not (isinstance(h, SampledMotion) and isinstance(v, SampledMotion)):
         return v
     if math.isclose(h.dt, v.dt, rel_tol=1e-12) and h.acc.size == v.acc.size and h.t_start == v.t_start:
@@ -223,7 +244,7 @@ def match_components(horizontal, vertical, resample=False):
 
 def end_time(body, horizontal, vertical=None):
     t = 0.0
-    for exc in (as_excitation(horizontal), as_excitation(vertical)):
+    for exc in (as_excitation(horizontal), as_excitation(vertical, "vertical")):
         if exc is not None:
             t = max(t, exc.end_time(body))
     return t

@@ -172,6 +172,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         kw["max_steps"] = max_steps
     if record_breakpoints is not None:
         kw["record_breakpoints"] = record_breakpoints
+    resample_vertical = V.boolean("resample_vertical", resample_vertical)
     spec = models.select(body, wall, friction, foundation, V.positive("mass", mass))
     vertical = X.match_components(excitation, vertical, resample_vertical)
     if foundation is not None:
@@ -182,7 +183,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
                                    history_capacity=history_capacity)
     solver = make_solver(solver, rtol, atol, dt, **kw)
     excitation = X.as_excitation(excitation)
-    vertical = X.as_excitation(vertical)
+    vertical = X.as_excitation(vertical, "vertical")
     theta0 = V.finite("theta0", theta0)
     dtheta0 = V.finite("dtheta0", dtheta0)
     if abs(theta0) >= body.theta_over:
@@ -285,23 +286,43 @@ def events_frame(lg, cnt):
     return events
 
 
+#: Largest history buffer a caller may ask for (rows); the buffer grows by itself up to this size.
+MAX_HISTORY = 50_000_000
+
+
 def run_inputs(body, excitation, vertical, duration, t_after, t_eval, history_capacity, solver,
                early_exit):
     """Kernel inputs of one run: excitation header and samples, solver options
     (end time from ``duration`` or the excitation end + ``t_after``), output
     times and the history capacity."""
+    early_exit = V.boolean("early_exit", early_exit)
+    if history_capacity is not None:
+        history_capacity = V.integer("history_capacity", history_capacity, 1, MAX_HISTORY)
+    hdr, smp = X.to_header(body, excitation, vertical)      # checks the excitations first
     t_exc = X.end_time(body, excitation, vertical)
     if duration is None:
-        t_end = t_exc + V.non_negative("t_after", t_after)
+        t_after = V.run_time("t_after", V.non_negative("t_after", t_after))
+        t_end = V.run_time("t_after", t_exc + t_after, "the excitation plus t_after")
     else:
-        t_end = V.positive("duration", duration)
+        t_end = V.run_time("duration", V.positive("duration", duration))
     if t_end <= 0:
         raise ValueError("the run has zero length: give duration or an excitation")
-    hdr, smp = X.to_header(body, excitation, vertical)
+    solver.check_fixed_steps(t_end)
     opt = solver.options(t_end, early_exit)
     if t_eval is None:
         return hdr, smp, opt, np.empty(0), history_capacity or 20000
-    te = np.sort(V.finite_array("t_eval", t_eval))
+    te = V.finite_array("t_eval", t_eval)
+    if te.size == 0:
+        raise ValueError("t_eval is empty; pass t_eval=None for the history at every step and event")
+    if (np.diff(te) < 0).any():
+        i = int(np.flatnonzero(np.diff(te) < 0)[0])
+        raise ValueError(f"t_eval must be sorted (non-decreasing): t_eval[{i + 1}] = {te[i + 1]!r} < "
+                         f"t_eval[{i}] = {te[i]!r}")
+    t0 = float(opt[L.O_T0])
+    if te[0] < t0 or te[-1] > t_end:
+        raise ValueError(f"t_eval must lie inside the run [{t0:g}, {t_end:g}] s, got values from {te[0]:g} "
+                         f"to {te[-1]:g} s" + ("" if duration is not None else
+                                               " (the run ends t_after after the excitation; give duration)"))
     return hdr, smp, opt, te, te.size + 2
 
 

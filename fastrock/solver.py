@@ -53,12 +53,24 @@ class Solver:
             V.positive("atol", self.atol)
         if self.dt is not None:
             V.positive("dt", self.dt)
-        if int(self.max_steps) < 1:
-            raise ValueError(f"max_steps must be >= 1, got {self.max_steps!r}")
-        if not self.max_step > 0:
-            raise ValueError(f"max_step must be > 0, got {self.max_step!r}")
+        V.integer("max_steps", self.max_steps, 1, V.MAX_STEPS)
+        if not (self.max_step == math.inf or V._is_number(self.max_step)
+                and V.positive("max_step", self.max_step)):
+            raise ValueError(f"max_step must be > 0 (inf: no limit), got {self.max_step!r}")
+        V.boolean("record_breakpoints", self.record_breakpoints)
         V.non_negative("eps_omega", self.eps_omega)
         V.non_negative("eps_t", self.eps_t)
+
+    def check_fixed_steps(self, span, what="the run"):
+        """With a fixed step, refuse a run of ``span`` seconds that needs more steps than
+        ``max_steps`` (it could only end in failed:step-budget, after the whole budget)."""
+        if not self.dt:
+            return
+        n = span / self.dt
+        if n > self.max_steps:
+            raise ValueError(f"dt = {self.dt:g} s needs {n:.3g} fixed steps for {what} of {span:.4g} s, more "
+                             f"than the step budget max_steps = {int(self.max_steps):,}; use a larger dt, a "
+                             f"shorter run or a larger max_steps (at most {V.MAX_STEPS:.0e})")
 
     @property
     def name(self):
