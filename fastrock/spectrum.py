@@ -47,8 +47,16 @@ boundary            outcome changes when the tolerance is halved (boundary_check
 """
 
 
+#: Largest grid of one call (runs): its arrays take about 1 kB per run.
+MAX_GRID_RUNS = 10_000_000
+
+
 def _grid(values, name):
+    if isinstance(values, (str, bytes)):
+        raise ValueError(f"{name} must be an array of numbers, got the string {values!r}")
     a = np.atleast_1d(V.finite_array(name, np.atleast_1d(values)))
+    if a.size == 0:
+        raise ValueError(f"{name} is empty")
     if (a < 0).any():
         raise ValueError(f"{name} must be >= 0")
     for v in a:
@@ -63,7 +71,10 @@ def _signs(sign):
         return [1, -1]
     if np.ndim(sign) == 0:
         return [V.sign("sign", sign)]
-    return [V.sign("sign", s) for s in sign]
+    out = [V.sign("sign", s) for s in sign]
+    if not out:
+        raise ValueError("sign is empty; give +1, -1, 'both' or a list of them")
+    return out
 
 
 def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, pulse="one-sine",
@@ -115,17 +126,28 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     """
     solver = make_solver(solver, rtol, atol, dt)
     V.choice("pulse", pulse, ("one-sine", "half-sine", "one-cosine"))
+    early_exit = V.boolean("early_exit", early_exit)
+    boundary_check = V.boolean("boundary_check", boundary_check)
+    if chunk_size is not None:
+        chunk_size = V.integer("chunk_size", chunk_size, 1)
     amps = _grid(amplitude_ratios, "amplitude_ratios")
     freqs = _grid(frequency_ratios, "frequency_ratios")
     if (freqs <= 0).any():
         raise ValueError("frequency_ratios must be > 0")
     spec = models.select(body, wall, friction, foundation, V.positive("mass", mass))
-    vertical = X.as_excitation(vertical)
+    vertical = X.as_excitation(vertical, "vertical")
     signs = _signs(sign)
-    t_after = V.non_negative("t_after", t_after)
+    t_after = V.run_time("t_after", V.non_negative("t_after", t_after))
+    n = len(signs) * freqs.size * amps.size
+    if n > MAX_GRID_RUNS:
+        raise ValueError(f"amplitude_ratios x frequency_ratios x sign: {amps.size} x {freqs.size} x "
+                         f"{len(signs)} = {n:,} runs, more than {MAX_GRID_RUNS:,} in one call; split the grid")
+    V.acceleration("amplitude_ratios", amps.max() * body.g * np.tan(body.alpha), body.g,
+                   "the largest pulse amplitude a_p = amplitude_ratio g tan(alpha)")
+    t_longest = V.run_time("frequency_ratios", (np.pi if pulse == "half-sine" else 2 * np.pi) /
+                           (freqs.min() * body.p), "the longest pulse")
     S, F, A = np.meshgrid(np.array(signs, float), freqs, amps, indexing="ij")
     S, F, A = S.ravel(), F.ravel(), A.ravel()
-    n = A.size
     kind = X.PULSE_KINDS[pulse]
     omega = F * body.p
     amp = A * body.g * np.tan(body.alpha)
@@ -142,6 +164,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         vhdr, smp = X.to_header(body, None, vertical)
         HDR[:, L.V_CHANNEL:] = vhdr[L.V_CHANNEL:]
         t_vertical = X.end_time(body, None, vertical)
+    solver.check_fixed_steps(V.run_time("t_after", max(t_longest, t_vertical) + t_after,
+                                        "the longest run (pulse plus t_after)"), "the longest run")
     opt = solver.options(0.0, early_exit)
     OPT = np.tile(opt, (n, 1))
     OPT[:, L.O_T_END] = np.maximum(dur, t_vertical) + t_after

@@ -83,6 +83,9 @@ def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=Tr
     YF = np.full(Y0.shape, np.nan)
     if chunk_size is None:
         chunk_size = max(256, min(4096, n // 20 + 1))
+    else:
+        from ._validate import integer
+        chunk_size = integer("chunk_size", chunk_size, 1)     # 0 would never advance
     bar = Progress(n, progress and n > chunk_size, label)
     if progress and model is not None and not getattr(sweep_kernel, "signatures", ()):
         from .warmup import compile_notice
