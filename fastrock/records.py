@@ -215,12 +215,8 @@ class GroundMotion:
                 f"acc must be finite; first non-finite value {acc[bad[0]]} "
                 f"at index {bad[0]}"
             )
-        try:
-            dt = float(self.dt)
-        except (TypeError, ValueError):
-            raise ValueError(f"dt must be a number [s], got {self.dt!r}") from None
-        if not (math.isfinite(dt) and dt > 0.0):
-            raise ValueError(f"dt must be finite and > 0 [s], got {self.dt!r}")
+        from . import _validate as V
+        dt = V.positive("dt", self.dt)
         acc.flags.writeable = False
         object.__setattr__(self, "acc", acc)
         object.__setattr__(self, "dt", dt)
@@ -339,7 +335,9 @@ class GroundMotion:
         ValueError
             If the fractions are out of order/range or the record is all zero.
         """
-        if not (0.0 <= a < b <= 1.0):
+        from . import _validate as V
+        a, b = V.in_closed("a", a, 0.0, 1.0), V.in_closed("b", b, 0.0, 1.0)
+        if not a < b:
             raise ValueError(f"need 0 <= a < b <= 1, got a={a!r}, b={b!r}")
         husid = self._cumulative_arias()
         total = husid[-1]
@@ -376,9 +374,8 @@ class GroundMotion:
         factor : float
             Finite amplitude factor; negative values flip the polarity.
         """
-        factor = float(factor)
-        if not math.isfinite(factor):
-            raise ValueError(f"factor must be finite, got {factor!r}")
+        from . import _validate as V
+        factor = V.finite("factor", factor)
         return GroundMotion(
             self.acc * factor,
             self.dt,
@@ -397,9 +394,8 @@ class GroundMotion:
         unit : str, optional
             Unit of ``pga``: 'g' (default), 'm/s2', 'cm/s2' / 'gal', 'mm/s2'.
         """
-        target = float(pga) * _unit_factor(unit)
-        if not (math.isfinite(target) and target > 0.0):
-            raise ValueError(f"pga must be finite and > 0, got {pga!r}")
+        from . import _validate as V
+        target = V.positive("pga", pga) * _unit_factor(unit)
         if self.pga == 0.0:
             raise ValueError("cannot scale an all-zero record to a target PGA")
         return self.scaled(target / self.pga)
@@ -425,9 +421,8 @@ class GroundMotion:
         GroundMotion
             Corrected record [m/s²], same ``dt`` and name.
         """
-        order = int(order)
-        if order < 1:
-            raise ValueError(f"order must be >= 1, got {order}")
+        from . import _validate as V
+        order = V.integer("order", order, 1)
         if order >= self.npts:
             raise ValueError(f"order must be < npts ({self.npts}), got {order}")
         # Fit on t/T in [0, 1] to keep the Vandermonde matrix well conditioned.
@@ -814,12 +809,8 @@ def _parse_record_text(
     user_unit = _canonical_unit(unit) if unit is not None else None
     dt_user = None
     if dt is not None:
-        try:
-            dt_user = float(dt)
-        except (TypeError, ValueError):
-            raise ValueError(f"dt must be a number [s], got {dt!r}") from None
-        if not (math.isfinite(dt_user) and dt_user > 0.0):
-            raise ValueError(f"dt must be finite and > 0 [s], got {dt!r}")
+        from . import _validate as V
+        dt_user = V.positive("dt", dt)
     lines = _split_lines(text)
 
     if not any(ln.strip() for ln in lines):
@@ -1173,6 +1164,10 @@ def read_record(
         None, or out of range for the file's rows.
     """
     column = _check_arguments(decimal, column)
+    if not isinstance(path, (str, os.PathLike)):
+        raise ValueError(f"path must be a file path (str or os.PathLike), got {path!r}")
+    if name is not None and not isinstance(name, str):
+        raise ValueError(f"name must be a string, got {name!r}")
     p = Path(path)
     raw = p.read_bytes()
     try:
