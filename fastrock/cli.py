@@ -11,6 +11,9 @@ import numpy as np
 
 #: Exit code of a command stopped by Ctrl-C (128 + SIGINT), in every command.
 EXIT_INTERRUPTED = 130
+#: Most points of one grid option (--n-amp ...) and most runs of one grid.
+MAX_GRID_POINTS = 100_000
+MAX_GRID_RUNS = 10_000_000
 
 
 def interrupted_exit(done, total, what="runs", written=()):
@@ -22,6 +25,18 @@ def interrupted_exit(done, total, what="runs", written=()):
     tail = f"; wrote {' and '.join(files)} with them" if files and done else "; nothing written"
     print(f"fastrock: interrupted: {done} of {total} {what} finished{tail}", file=sys.stderr)
     return EXIT_INTERRUPTED
+
+
+def grid_option(prefix, lo, hi, n, positive=True, n_option=None):
+    """``np.linspace(lo, hi, n)`` from the options ``{prefix}-min``, ``{prefix}-max`` and
+    ``n_option`` (default ``--n-{prefix}``), each checked and named in the error."""
+    from . import _validate as V
+    n_option = n_option or "--n-" + prefix.lstrip("-")
+    check = V.positive if positive else V.non_negative
+    lo, hi = check(f"{prefix}-min", lo), check(f"{prefix}-max", hi)
+    if lo > hi:
+        raise ValueError(f"{prefix}-min = {lo:g} is above {prefix}-max = {hi:g}")
+    return np.linspace(lo, hi, V.integer(n_option, n, 1, MAX_GRID_POINTS))
 
 
 def _body(args):
@@ -116,8 +131,11 @@ def cmd_spectrum(args):
     body = _body(args)
     wall = _wall(args)
     signs = [1, -1] if args.sign == "both" else [int(args.sign)]
-    amps = np.linspace(args.amp_min, args.amp_max, args.n_amp)
-    freqs = np.linspace(args.freq_min, args.freq_max, args.n_freq)
+    amps = grid_option("--amp", args.amp_min, args.amp_max, args.n_amp, positive=False)
+    freqs = grid_option("--freq", args.freq_min, args.freq_max, args.n_freq)
+    if amps.size * freqs.size * len(signs) > MAX_GRID_RUNS:
+        raise ValueError(f"--n-amp x --n-freq: {amps.size} x {freqs.size} x {len(signs)} sign(s) = "
+                         f"{amps.size * freqs.size * len(signs):,} runs, more than {MAX_GRID_RUNS:,}")
     t0 = time.perf_counter()
     df = overturning_spectrum(body, amps, freqs, sign=signs, pulse=args.pulse, wall=wall, friction=_friction(args),
                               foundation=_foundation(args, body), mass=args.mass,
@@ -248,6 +266,10 @@ def main(argv=None):
         return args.func(args)
     except ValueError as exc:
         print(f"fastrock: error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:          # a file that cannot be read or written
+        where = f": {exc.filename}" if getattr(exc, "filename", None) else ""
+        print(f"fastrock: error: {exc.strerror or exc}{where}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         # commands with partial results (sweeps, studies) write them and return 130 themselves
