@@ -160,6 +160,9 @@ def _as_walls(walls):
             w = _parse_wall(w)
         elif isinstance(w, (int, float)) and not isinstance(w, bool):
             w = _make_wall(float(w))
+        elif w is not None and not isinstance(w, _wall_class()):
+            raise ValueError(f"walls: a wall setting must be None (two-sided), a fastrock.Wall, a gap in m "
+                             f"or 'two-sided', got {w!r}")
         out.append(w)
     if not out:
         raise ValueError("walls must hold at least one setting (None = two-sided)")
@@ -167,6 +170,14 @@ def _as_walls(walls):
     if len(set(labels)) != len(labels):
         raise ValueError(f"walls must be distinct settings, got {labels}")
     return tuple(out)
+
+
+def _wall_class():
+    try:
+        from .wall import Wall
+    except ImportError:
+        return ()
+    return Wall
 
 
 def _make_wall(gap):
@@ -185,7 +196,7 @@ def _parse_wall(text):
     try:
         gap = float(t)
     except ValueError:
-        raise ValueError(f"wall setting must be 'two-sided' or a gap in m, got {text!r}") from None
+        raise ValueError(f"walls: a wall setting must be 'two-sided' or a gap in m, got {text!r}") from None
     return _make_wall(gap)
 
 
@@ -238,6 +249,8 @@ def load_records(records, unit=None, dt=None, *, column=None, decimal=None):
         if isinstance(r, GroundMotion):
             out.append(r)
         elif isinstance(r, (str, os.PathLike)):
+            if not Path(r).is_file():
+                raise ValueError(f"records: record file not found: {r}")
             out.append(_read_one(Path(r), unit, dt, column=column, decimal=decimal))
         elif hasattr(r, "samples_si"):     # SampledMotion
             if getattr(r, "t_start", 0.0) != 0.0:
@@ -269,10 +282,45 @@ def load_records(records, unit=None, dt=None, *, column=None, decimal=None):
 def _grid(values, name, default):
     if values is None:
         return default.copy()
+    if isinstance(values, (str, bytes)):
+        raise ValueError(f"{name} must be an array of numbers, got the string {values!r}")
     a = np.unique(V.finite_array(name, np.atleast_1d(values)))
+    if a.size == 0:
+        raise ValueError(f"{name} is empty")
     if (a <= 0).any():
         raise ValueError(f"{name} must be > 0")
+    for v in a[[0, -1]]:
+        V.finite(name, v)      # magnitude and denormal checks
     return a
+
+
+#: Outcome names a run of the rocking spectrum can have (fastrock.outcomes).
+OUTCOMES = ("safe", "mode1", "mode2", "leaning", "flight", "slide", "failed", "unfinished")
+
+
+def _stable_outcomes(outcomes):
+    try:
+        items = [] if isinstance(outcomes, (str, bytes)) else list(outcomes)
+    except TypeError:
+        items = []
+    if not items or any(not isinstance(o, str) or o not in OUTCOMES for o in items):
+        raise ValueError(f"stable_outcomes must be a non-empty list of outcomes among {list(OUTCOMES)}, "
+                         f"such as ['safe'], got {outcomes!r}")
+    return tuple(items)
+
+
+def _check_record_options(unit, dt):
+    if unit is not None:
+        from .records import _canonical_unit
+        _canonical_unit(unit)
+    if dt is not None:
+        V.positive("dt", dt)
+
+
+def _check_run_length(records, solver, t_after):
+    longest = V.run_time("t_after", max(r.duration for r in records) + t_after,
+                         "the longest record plus t_after")
+    solver.check_fixed_steps(longest, "the longest record plus t_after")
 
 
 # ------------------------------------------------------------------ engine
@@ -387,14 +435,20 @@ def rocking_spectrum_runs(records, slenderness=None, half_widths=None, walls=Non
     """Every run of the rocking-spectrum study, one row per record x wall x
     size x slenderness (columns in ``RUN_COLUMNS``).  Arguments as in
     :func:`rocking_spectrum`."""
+    _check_record_options(unit, None)
     records = load_records(records, unit)
     s_grid = _grid(slenderness, "slenderness", DEFAULT_SLENDERNESS)
     b_grid = _grid(half_widths, "half_widths", DEFAULT_HALF_WIDTHS)
     walls = _as_walls(walls)
     solver = _solver(solver, rtol, atol, dt, record_breakpoints)
-    t_after = V.non_negative("t_after", t_after)
+    t_after = V.run_time("t_after", V.non_negative("t_after", t_after))
     if e is not None:
         e = V.in_closed("e", e, 0.0, 1.0)
+    stable_outcomes = _stable_outcomes(stable_outcomes)
+    early_exit = V.boolean("early_exit", early_exit)
+    if chunk_size is not None:
+        chunk_size = V.integer("chunk_size", chunk_size, 1)
+    _check_run_length(records, solver, t_after)
     R, W, B, S = np.meshgrid(np.arange(len(records)), np.arange(len(walls)), b_grid, s_grid,
                              indexing="ij")
     df = _rows_sweep(records, R.ravel(), B.ravel(), S.ravel(), W.ravel(), walls, e=e,
@@ -619,6 +673,13 @@ class MinimumStableSlenderness:
         return self.runs[self.runs["round"] == 0].reset_index(drop=True)
 
 
+#: minimum_stable_slenderness: smallest tol relative to hi, most points of a scan or round, and
+#: most refinement rounds (bisection from a bracket of width hi down to MIN_TOL hi takes 40).
+MIN_TOL = 1e-12
+MAX_SCAN = 100_000
+MAX_ROUNDS = 200
+
+
 def minimum_stable_slenderness(record, b, lo=0.05, hi=0.6, tol=1e-3, *, wall=None, scan=20,
                                sections=2, e=None, unit=None, solver=None, rtol=None, atol=None,
                                dt=None, t_after=T_AFTER, stable_outcomes=STABLE_OUTCOMES):
@@ -662,6 +723,7 @@ def minimum_stable_slenderness(record, b, lo=0.05, hi=0.6, tol=1e-3, *, wall=Non
     -------
     MinimumStableSlenderness
     """
+    _check_record_options(unit, None)
     (rec,) = load_records(record, unit)
     b = V.positive("b", b)
     lo = V.positive("lo", lo)
@@ -669,14 +731,17 @@ def minimum_stable_slenderness(record, b, lo=0.05, hi=0.6, tol=1e-3, *, wall=Non
     if not lo < hi:
         raise ValueError(f"need lo < hi, got lo={lo}, hi={hi}")
     tol = V.positive("tol", tol)
-    if int(scan) < 2:
-        raise ValueError(f"scan must be >= 2, got {scan!r}")
-    if int(sections) < 2:
-        raise ValueError(f"sections must be >= 2, got {sections!r}")
+    if tol < MIN_TOL * hi:
+        raise ValueError(f"tol = {tol!r} is below {MIN_TOL:g} hi = {MIN_TOL * hi:.3g}: float64 slenderness "
+                         f"values cannot be bisected that finely")
+    scan = V.integer("scan", scan, 2, MAX_SCAN)
+    sections = V.integer("sections", sections, 2, MAX_SCAN)
     solver = _solver(solver, rtol, atol, dt)
-    t_after = V.non_negative("t_after", t_after)
+    t_after = V.run_time("t_after", V.non_negative("t_after", t_after))
     if e is not None:
         e = V.in_closed("e", e, 0.0, 1.0)
+    stable_outcomes = _stable_outcomes(stable_outcomes)
+    _check_run_length([rec], solver, t_after)
     walls = (wall,)
     cols = ["round", "slenderness", "outcome", "status", "stable", "max_rotation_ratio"]
     done = []
@@ -701,7 +766,7 @@ def minimum_stable_slenderness(record, b, lo=0.05, hi=0.6, tol=1e-3, *, wall=Non
     else:
         a, c = float(grid[thr.index - 1]), float(grid[thr.index])
         rnd = 0
-        while c - a > tol:
+        while c - a > tol and rnd < MAX_ROUNDS:     # each round narrows the bracket by `sections`
             rnd += 1
             pts = np.linspace(a, c, int(sections) + 1)
             st = np.concatenate([[False], run(pts[1:-1], rnd), [True]])
@@ -718,6 +783,10 @@ def minimum_stable_slenderness(record, b, lo=0.05, hi=0.6, tol=1e-3, *, wall=Non
 
 
 # ------------------------------------------------------------ single runs
+#: Most fixed steps per record interval in simulate_record.
+MAX_SUBSTEPS = 1_000_000
+
+
 def simulate_record(body, record, fixed_step=False, *, substeps=1, unit=None, **kw):
     """Simulate ``body`` under a record; the fixed step can follow the record.
 
@@ -743,9 +812,8 @@ def simulate_record(body, record, fixed_step=False, *, substeps=1, unit=None, **
     if fixed_step:
         if kw.get("dt") is not None or kw.get("solver") is not None:
             raise ValueError("give either fixed_step=True or dt=/solver=, not both")
-        if int(substeps) < 1:
-            raise ValueError(f"substeps must be >= 1, got {substeps!r}")
-        kw["dt"] = rec.dt / int(substeps)
+        substeps = V.integer("substeps", substeps, 1, MAX_SUBSTEPS)
+        kw["dt"] = rec.dt / substeps
     return simulate(body, rec, **kw)
 
 
@@ -912,9 +980,11 @@ def _cli_rocking_spectrum(args):
     import time
     records = load_records(args.files or None, args.unit, args.dt, column=_column_arg(args.column),
                            decimal=args.decimal)
+    from .cli import grid_option
+    s = grid_option("--slenderness", args.slenderness_min, args.slenderness_max, args.n_slenderness,
+                    n_option="--n-slenderness")
+    b = grid_option("--b", args.b_min, args.b_max, args.n_sizes, n_option="--n-sizes")
     walls = parse_walls(args.walls) if args.walls else None
-    s = np.linspace(args.slenderness_min, args.slenderness_max, args.n_slenderness)
-    b = np.linspace(args.b_min, args.b_max, args.n_sizes)
     t0 = time.perf_counter()
     table, runs = rocking_spectrum(records, s, b, walls, rtol=args.rtol, t_after=args.t_after,
                                    progress=not args.quiet, return_runs=True)
