@@ -4,6 +4,7 @@ smallest kernel they need.  Built in Python or read from TOML
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -47,7 +48,7 @@ class Scene:
         if not isinstance(self.body, (RigidBlock, FlexibleBody)):
             raise ValueError(f"body must be a RigidBlock or FlexibleBody, got {type(self.body).__name__}")
         self.excitation = as_excitation(self.excitation)
-        self.vertical = as_excitation(self.vertical)
+        self.vertical = as_excitation(self.vertical, "vertical")
 
     @property
     def effects(self):
@@ -89,6 +90,8 @@ class Scene:
                 data = tomllib.load(fh)
         except tomllib.TOMLDecodeError as exc:
             raise ValueError(f"{path}: not valid TOML: {exc}") from None
+        except (FileNotFoundError, IsADirectoryError, PermissionError) as exc:
+            raise ValueError(f"scene file {path}: {exc.strerror}") from None
         return cls.from_dict(data, base=path.parent, name=path.stem)
 
     @classmethod
@@ -101,28 +104,51 @@ class Scene:
             raise ValueError(f"unknown scene section(s) {sorted(unknown)}; known: {sorted(known)}")
         if "body" not in data:
             raise ValueError("scene: a [body] section is required")
-        body = _body(dict(data["body"]))
-        exc = _excitation(dict(data["excitation"]), base, "excitation") if "excitation" in data else None
-        vert = _excitation(dict(data["vertical"]), base, "vertical") if "vertical" in data else None
+        body = _body(_table(data["body"], "body"))
+        exc = _excitation(_table(data["excitation"], "excitation"), base, "excitation") if "excitation" in data \
+            else None
+        vert = _excitation(_table(data["vertical"], "vertical"), base, "vertical") if "vertical" in data else None
         wall = None
         if "wall" in data:
             from .wall import Wall
-            wall = Wall(**_only(dict(data["wall"]), "wall", {"gap", "side", "height", "restitution", "friction"}))
+            wall = _build(Wall, _only(_table(data["wall"], "wall"), "wall",
+                                      {"gap", "side", "height", "restitution", "friction"}), "wall")
         friction = None
         if "friction" in data:
             from .friction import Friction
-            friction = Friction(**_only(dict(data["friction"]), "friction", {"mu_s", "mu_k", "slide_tolerance", "lift_off"}))
-        foundation, mass = (_foundation(dict(data["foundation"]), body) if "foundation" in data
+            friction = _build(Friction, _only(_table(data["friction"], "friction"), "friction",
+                                              {"mu_s", "mu_k", "slide_tolerance", "lift_off"}), "friction")
+        foundation, mass = (_foundation(_table(data["foundation"], "foundation"), body) if "foundation" in data
                             else (None, 1.0))
-        solver = Solver(**_only(dict(data.get("solver", {})), "solver",
+        solver = Solver(**_only(_table(data.get("solver", {}), "solver"), "solver",
                                 {"rtol", "atol", "dt", "max_steps", "max_step", "record_breakpoints",
                                  "eps_omega", "eps_t"}))
-        run = _only(dict(data.get("run", {})), "run", {"theta0", "dtheta0", "duration", "t_after"})
-        out = _only(dict(data.get("output", {})), "output", {"csv", "events", "png"})
+        run = _only(_table(data.get("run", {}), "run"), "run", {"theta0", "dtheta0", "duration", "t_after"})
+        for k, v in run.items():      # checked here too, so that a bad file fails when it is read
+            (V.positive if k == "duration" else V.non_negative if k == "t_after" else V.finite)(f"[run] {k}", v)
+        out = _only(_table(data.get("output", {}), "output"), "output", {"csv", "events", "png"})
+        for k, v in out.items():
+            if not isinstance(v, str) or not v:
+                raise ValueError(f"[output] {k} must be a file name (a string), got {v!r}")
         out = {k: str(base / v) for k, v in out.items()}
         return cls(body=body, excitation=exc, vertical=vert, wall=wall, friction=friction, foundation=foundation,
                    mass=mass, solver=solver,
-                   name=data.get("name", name), outputs=out, **run)
+                   name=str(data.get("name", name)), outputs=out, **run)
+
+
+def _table(value, section):
+    """A TOML table (dict) as a new dict, or a ValueError naming the section."""
+    if not isinstance(value, dict):
+        raise ValueError(f"[{section}] must be a table (key = value lines under [{section}]), got {value!r}")
+    return dict(value)
+
+
+def _build(cls, kw, section):
+    """``cls(**kw)``; a missing or unexpected key is a ValueError naming the section."""
+    try:
+        return cls(**kw)
+    except TypeError as exc:
+        raise ValueError(f"[{section}]: " + re.sub(r"^[\w.]+\(\) ", "", str(exc))) from None
 
 
 def _only(d, section, allowed):
@@ -136,17 +162,19 @@ def _body(d):
     kind = d.pop("type", "rigid")
     if kind == "rigid":
         if "b" in d or "h" in d:
-            return RigidBlock.rectangle(**_only(d, "body", {"b", "h", "e", "g", "theta_over"}))
+            return _build(RigidBlock.rectangle, _only(d, "body", {"b", "h", "e", "g", "theta_over"}), "body")
         if "I0" in d:
-            return RigidBlock.from_inertia(**_only(d, "body", {"R", "alpha", "I0", "m", "e", "g", "theta_over"}))
-        return RigidBlock(**_only(d, "body", {"alpha", "p", "e", "g", "theta_over"}))
+            return _build(RigidBlock.from_inertia,
+                          _only(d, "body", {"R", "alpha", "I0", "m", "e", "g", "theta_over"}), "body")
+        return _build(RigidBlock, _only(d, "body", {"alpha", "p", "e", "g", "theta_over"}), "body")
     if kind == "flexible":
         if "K" in d:
-            return FlexibleBody.from_dimensions(**_only(d, "body", {"m", "K", "c", "B", "H", "I_m", "impact", "e",
-                                                                    "g", "theta_over", "m_b", "h_b"}))
-        return FlexibleBody(**_only(d, "body", {"alpha", "p", "omega_n_over_p", "zeta", "e", "impact", "g",
-                                                "theta_over", "rotary_inertia_ratio", "mass", "base_mass_ratio",
-                                                "base_cm_height"}))
+            return _build(FlexibleBody.from_dimensions,
+                          _only(d, "body", {"m", "K", "c", "B", "H", "I_m", "impact", "e", "g", "theta_over",
+                                            "m_b", "h_b"}), "body")
+        return _build(FlexibleBody, _only(d, "body", {"alpha", "p", "omega_n_over_p", "zeta", "e", "impact", "g",
+                                                      "theta_over", "rotary_inertia_ratio", "mass",
+                                                      "base_mass_ratio", "base_cm_height"}), "body")
     raise ValueError(f"[body] type must be 'rigid' or 'flexible', got {kind!r}")
 
 
@@ -177,18 +205,20 @@ def _foundation(d, body):
         return cls.from_vibration(body, d["omega"], d.get("zeta", 0.0), mass=mass, **kw), mass
     if "zeta" in d:
         raise ValueError("[foundation]: zeta goes with omega")
-    return cls(**d), mass
+    return _build(cls, d, "foundation"), mass
 
 
 def _excitation(d, base, section):
     kind = d.pop("type", "pulse")
     if kind == "pulse":
-        return Pulse(**_only(d, section, {"amplitude", "frequency", "sign", "kind", "amplitude_unit",
-                                          "frequency_unit", "t_start", "duration"}))
+        return _build(Pulse, _only(d, section, {"amplitude", "frequency", "sign", "kind", "amplitude_unit",
+                                                "frequency_unit", "t_start", "duration"}), section)
     if kind == "record":
         from .records import load_default_record, read_record
         d = _only(d, section, {"file", "unit", "dt", "scale", "pga_g", "t_start", "column", "decimal"})
         f = d.get("file")
+        if f not in (None, "default") and (not isinstance(f, str) or not (base / f).is_file()):
+            raise ValueError(f"[{section}] file: record file not found: {f if not isinstance(f, str) else base / f}")
         rec = load_default_record() if f in (None, "default") else read_record(
             base / f, unit=d.get("unit"), dt=d.get("dt"), column=d.get("column"), decimal=d.get("decimal", "."))
         scale = V.finite("scale", d.get("scale", 1.0))
