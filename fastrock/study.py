@@ -105,6 +105,10 @@ MEASURES = ("pga", "pgv", "pga_over_g_tan_alpha", "scale")
 #: 34-64 rows or more keep it under 5 %; 128 (about 2 %) leaves a margin for
 #: shorter records and busier machines.
 DEFAULT_CHUNK_SIZE = 128
+#: Most intensity levels of a {start, stop, num} table and most bodies a study file's
+#: [[bodies]] lists may expand to.
+MAX_LEVELS = 100_000
+MAX_BODIES = 100_000
 #: Seconds to wait for a scheduler given by address.
 CONNECT_TIMEOUT = 10.0
 #: Dask retries of a chunk whose task raised.
@@ -232,7 +236,16 @@ class Study:
 
     @classmethod
     def from_dict(cls, data, base=".", name=""):
-        from .scene import _body, _only
+        try:
+            return cls._from_dict(data, base, name)
+        except StudyError:
+            raise
+        except ValueError as exc:
+            raise StudyError(str(exc)) from None
+
+    @classmethod
+    def _from_dict(cls, data, base=".", name=""):
+        from .scene import _body, _only, _table
         base = Path(base)
         data = dict(data)
         known = {"name", "measure", "levels", "t_after", "early_exit", "records", "unit", "dt",
@@ -246,9 +259,20 @@ class Study:
         levels = data["levels"]
         if isinstance(levels, dict):
             lv = _only(dict(levels), "levels", {"start", "stop", "num"})
-            levels = np.linspace(float(lv["start"]), float(lv["stop"]), int(lv["num"])).tolist()
+            missing = sorted({"start", "stop", "num"} - set(lv))
+            if missing:
+                raise StudyError(f"levels: the table {{start, stop, num}} lacks {missing}")
+            levels = np.linspace(V.positive("levels start", lv["start"]), V.positive("levels stop", lv["stop"]),
+                                 V.integer("levels num", lv["num"], 1, MAX_LEVELS)).tolist()
+        for key in ("records", "bodies"):
+            if not isinstance(data[key], (list, tuple)):
+                raise StudyError(f"{key} must be a list, got {data[key]!r}")
+        if not isinstance(data.get("variants", []), (list, tuple)):
+            raise StudyError(f"variants must be a list of tables ([[variants]]), got {data['variants']!r}")
         records = []
         for r in data["records"]:
+            if not isinstance(r, (str, dict)):
+                raise StudyError(f"records: each entry must be a file name, \"default\" or a table, got {r!r}")
             if isinstance(r, dict):
                 r = dict(_only(dict(r), "records", {"file", "unit", "dt", "column", "decimal"}))
                 f = r["file"]
@@ -267,8 +291,12 @@ class Study:
                     records.append(pattern)
         bodies = []
         for d in data["bodies"]:
-            d = dict(d)
+            d = _table(d, "[bodies]")
             keys = [k for k, v in d.items() if isinstance(v, list)]
+            n = math.prod(len(d[k]) for k in keys)
+            if n + len(bodies) > MAX_BODIES:
+                raise StudyError(f"[[bodies]]: the lists in {d} expand to {n:,} bodies, more than "
+                                 f"{MAX_BODIES:,} in one study")
             for combo in itertools.product(*(d[k] for k in keys)):
                 one = dict(d)
                 one.update(zip(keys, combo))
@@ -278,17 +306,24 @@ class Study:
                     raise StudyError(f"[[bodies]] {d}: {exc}") from None
         variants = []
         for v in data.get("variants", [{"name": "two-sided"}]):
-            v = dict(_only(dict(v), "variants", VARIANT_KEYS))
+            v = dict(_only(_table(v, "[variants]"), "variants", VARIANT_KEYS))
             if isinstance(v.get("wall"), dict):
                 from .wall import Wall
                 v["wall"] = Wall(**_only(dict(v["wall"]), "wall",
                                          {"gap", "side", "height", "restitution", "friction"}))
             variants.append(v)
-        solver = Solver(**_only(dict(data.get("solver", {})), "solver",
+        solver = Solver(**_only(_table(data.get("solver", {}), "solver"), "solver",
                                 {"rtol", "atol", "dt", "max_steps", "max_step",
                                  "record_breakpoints", "eps_omega", "eps_t"}))
-        run = dict(_only(dict(data.get("run", {})), "run",
+        run = dict(_only(_table(data.get("run", {}), "run"), "run",
                          {"output", "backend", "scheduler", "chunk_size"}))
+        for key in ("output", "scheduler"):
+            if key in run and (not isinstance(run[key], str) or not run[key]):
+                raise StudyError(f"[run] {key} must be a string, got {run[key]!r}")
+        if "backend" in run and run["backend"] not in ("local", "dask"):
+            raise StudyError(f"[run] backend must be 'local' or 'dask', got {run['backend']!r}")
+        if "chunk_size" in run:
+            run["chunk_size"] = V.integer("[run] chunk_size", run["chunk_size"], 1)
         if "output" in run:
             run["output"] = str(base / run["output"])
         return cls(records=records, bodies=bodies, levels=levels,
@@ -313,9 +348,18 @@ class Study:
             A missing record file, a record whose PGA is 0, a bad level or
             measure, a body/wall combination no kernel supports, ...
         """
-        if self.measure not in MEASURES:
+        if not isinstance(self.measure, str) or self.measure not in MEASURES:
             raise StudyError(f"measure must be one of {list(MEASURES)}, got {self.measure!r}")
         levels = _levels(self.levels)
+        try:
+            early_exit = V.boolean("early_exit", self.early_exit)
+            if self.unit is not None:
+                from .records import _canonical_unit
+                _canonical_unit(self.unit)
+            if self.dt is not None:
+                V.positive("dt", self.dt)
+        except ValueError as exc:
+            raise StudyError(str(exc)) from None
         records = _load(self.records, self.unit, self.dt)
         if not self.bodies:
             raise StudyError("bodies is empty")
@@ -329,13 +373,20 @@ class Study:
         if solver is None:
             solver = Solver()
         elif isinstance(solver, dict):
-            solver = Solver(**solver)
+            try:
+                solver = Solver(**solver)
+            except TypeError as exc:     # an unknown or missing key
+                raise StudyError(f"solver: {exc}") from None
         elif not isinstance(solver, Solver):
             raise StudyError(f"solver must be a fastrock.Solver or a dict, got {type(solver).__name__}")
         try:
-            t_after = V.non_negative("t_after", self.t_after)
+            t_after = V.run_time("t_after", V.non_negative("t_after", self.t_after))
+            longest = V.run_time("t_after", max(r.duration for r in records) + t_after,
+                                 "the longest record plus t_after")
+            solver.check_fixed_steps(longest, "the longest record plus t_after")
         except ValueError as exc:
             raise StudyError(str(exc)) from None
+        _check_intensity(levels, self.measure, records, bodies)
         from .foundation import block_inertia as _block_inertia
         specs, y0s = {}, {}
         for bi, body in enumerate(bodies):
@@ -349,7 +400,7 @@ class Study:
                                foundation.initial_state(_block_inertia(body, mass), 0.0, 0.0))
         prep = _Prepared(records=records, bodies=bodies, body_labels=_body_labels(bodies),
                          variant_names=names, walls=walls, levels=levels, measure=self.measure,
-                         solver=solver, t_after=t_after, early_exit=bool(self.early_exit),
+                         solver=solver, t_after=t_after, early_exit=early_exit,
                          specs=specs, effects=effects, y0s=y0s)
         prep.hash = _study_hash(prep)
         return prep
@@ -379,7 +430,7 @@ class _Prepared:
 
 def _levels(levels):
     try:
-        a = V.finite_array("levels", np.atleast_1d(np.asarray(levels, float)))
+        a = V.finite_array("levels", np.atleast_1d(V.finite_array("levels", levels, np.ndim(levels))))
     except (TypeError, ValueError) as exc:
         raise StudyError(str(exc)) from None
     if a.size == 0:
@@ -389,6 +440,26 @@ def _levels(levels):
     if np.unique(a).size != a.size:
         raise StudyError(f"levels must be distinct, got {a.tolist()}")
     return a
+
+
+def _check_intensity(levels, measure, records, bodies):
+    """Refuse levels that scale some record beyond V.MAX_ACCELERATION_G."""
+    pga = np.array([r.pga for r in records])
+    top = levels.max()
+    if measure == "pga":
+        peak = top * G_STANDARD
+    elif measure == "pgv":
+        pgv = np.array([r.pgv for r in records])
+        peak = top * np.max(pga / np.where(pgv > 0, pgv, np.inf))
+    elif measure == "pga_over_g_tan_alpha":
+        peak = top * max(b.g * math.tan(b.alpha) for b in bodies)
+    else:
+        peak = top * pga.max()
+    try:
+        V.acceleration("levels", peak, G_STANDARD,
+                       f"the scaled PGA at the largest level ({top:g}, measure {measure})")
+    except ValueError as exc:
+        raise StudyError(str(exc)) from None
 
 
 def _load(records, unit, dt):
@@ -962,8 +1033,11 @@ def run_study(study, output, backend=None, client=None, scheduler=None, chunk_si
         raise StudyError("client/scheduler given with backend='local'")
     if client is not None and scheduler is not None:
         raise StudyError("give either client= or scheduler=, not both")
-    if chunk_size is not None and (int(chunk_size) != chunk_size or chunk_size < 1):
-        raise StudyError(f"chunk_size must be a positive integer, got {chunk_size!r}")
+    if chunk_size is not None:
+        try:
+            chunk_size = V.integer("chunk_size", chunk_size, 1)
+        except ValueError:
+            raise StudyError(f"chunk_size must be a positive integer, got {chunk_size!r}") from None
     _need_pyarrow()
     prep = study.prepare()
     folder = Path(output)
@@ -1278,6 +1352,10 @@ def _fit_weighted(lnx, rec_w, rec_of_row, y, xs_index, nx):
     return ln_theta, beta, J @ cov_s @ J.T, f
 
 
+#: Most bootstrap resamples of fit_fragility.
+MAX_BOOT = 1_000_000
+
+
 def fit_fragility(df, im="pga_g", threshold=None, *, n_boot=200, seed=0, ci=0.90, label=""):
     """Lognormal fragility curve by maximum likelihood, with a bootstrap band.
 
@@ -1320,6 +1398,10 @@ def fit_fragility(df, im="pga_g", threshold=None, *, n_boot=200, seed=0, ci=0.90
     The standard errors treat rows as independent; the rows of one record are
     not, which the record bootstrap accounts for.
     """
+    n_boot = V.integer("n_boot", n_boot, 0, MAX_BOOT)
+    ci = V.in_open("ci", ci, 0.0, 1.0)
+    if not isinstance(im, str):
+        raise ValueError(f"fit_fragility: im must be a column name, got {im!r}")
     for col in ("record", "outcome", im):
         if col not in df.columns:
             raise ValueError(f"fit_fragility: column {col!r} missing")
@@ -1444,6 +1526,10 @@ def plot_fragility(fits, ax=None, im_max=None, band=True, points=True, title=Non
 
 # ==================================================================== CLI
 def _cli_study(args):
+    if args.chunk_size is not None:
+        V.integer("--chunk-size", args.chunk_size, 1)
+    V.positive("--connect-timeout", args.connect_timeout)
+    V.integer("--n-boot", args.n_boot, 0, MAX_BOOT)
     study = Study.from_toml(args.study)
     opts = study.run
     output = args.output or opts.get("output") or str(Path(args.study).with_suffix("")) + "_results"
