@@ -229,6 +229,32 @@ def _run_set_foundation(body, fnd, safe, over, grid, solver, repeats=3, threads=
                 nfev=float(np.mean(MET[:, L.M_NFEV])))
 
 
+def _names(name, values, allowed):
+    values = (values,) if isinstance(values, str) else tuple(values)
+    bad = [v for v in values if not isinstance(v, str) or v not in allowed]
+    if bad or not values:
+        raise ValueError(f"{name} must be a non-empty list among {', '.join(allowed)}, got {values!r}")
+    return values
+
+
+def _check_arguments(models, excitations, rtols, dts, t_after, record_breakpoints, grid, threads):
+    """work_precision's arguments, each checked and named."""
+    from . import _validate as V
+    models = _names("models", models, FAMILIES)
+    excitations = _names("excitations", excitations, ("pulse", "record"))
+    rtols = tuple(V.in_open("rtols", r, 1e-15, 1.0) for r in np.atleast_1d(V.finite_array("rtols", rtols,
+                                                                                          np.ndim(rtols))))
+    dts = tuple(V.positive("dts", d) for d in np.atleast_1d(V.finite_array("dts", dts, np.ndim(dts))))
+    t_after = V.run_time("t_after", V.non_negative("t_after", t_after))
+    record_breakpoints = tuple(V.boolean("record_breakpoints", b) for b in (
+        (record_breakpoints,) if np.ndim(record_breakpoints) == 0 else record_breakpoints))
+    if grid is not None:
+        grid = V.integer("grid", grid, 1)
+    if threads is not None:
+        threads = V.integer("threads", threads, 1)
+    return models, excitations, rtols, dts, t_after, record_breakpoints, grid, threads
+
+
 def work_precision(models=("rigid", "flexible"), excitations=("pulse", "record"), rtols=RTOLS, dts=DTS,
                    t_after=5.0, record_breakpoints=(True, False), progress=True, grid=None, threads=None):
     """Error against run time for each model family, excitation and setting.
@@ -242,6 +268,8 @@ def work_precision(models=("rigid", "flexible"), excitations=("pulse", "record")
     for quick checks).  ``threads``: Numba threads of the timed sweeps (None:
     all; recorded in the ``threads`` column, 0 meaning all).
     """
+    models, excitations, rtols, dts, t_after, record_breakpoints, grid, threads = _check_arguments(
+        models, excitations, rtols, dts, t_after, record_breakpoints, grid, threads)
     rows = []
     try:
         _work_precision_rows(rows, models, excitations, rtols, dts, t_after, record_breakpoints, progress,

@@ -391,11 +391,11 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical
     kw = {} if max_steps is None else {"max_steps": max_steps}
     solver = make_solver(solver, rtol, atol, dt, **kw)
     excitation = X.as_excitation(excitation)
-    vertical = X.as_excitation(vertical)
+    vertical = X.as_excitation(vertical, "vertical")
     theta0 = V.finite("theta0", theta0)
     dtheta0 = V.finite("dtheta0", dtheta0)
     spec, blk = foundation_spec(body, foundation, mass)
-    _check_release(body, theta0, allow_overturn)
+    _check_release(body, theta0, V.boolean("allow_overturn", allow_overturn))
     hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
                                         history_capacity, solver, False)
     y0 = foundation.initial_state(blk, theta0, dtheta0)
@@ -573,6 +573,11 @@ def make_predictor(model, body=None, mass=1.0, *, inertia_ratio=0.75, g=G_PREDIC
     V.choice("model", model, PREDICTOR_MODELS)
     if body is not None:
         block_inertia(body, mass)       # validates b, h, p
+    V.positive("inertia_ratio", inertia_ratio)
+    V.positive("g", g)
+    make_solver(rtol=rtol, max_steps=max_steps)     # validates rtol and max_steps
+    V.run_time("max_duration", V.positive("max_duration", max_duration))
+    return_peaks = V.boolean("return_peaks", return_peaks)
 
     def predictor(params, n):
         from .freerocking import half_cycles, rocking_quarter_period

@@ -44,6 +44,8 @@ import numpy as np
 import pandas as pd
 from numpy.polynomial.legendre import leggauss
 
+from . import _validate as V
+
 __all__ = [
     "rocking_period_linear",
     "rocking_period_exact",
@@ -383,6 +385,10 @@ def _next_amplitudes(theta: np.ndarray, alpha: float, e: float) -> np.ndarray:
     return np.clip(th, 0.0, theta)
 
 
+#: Most impacts housner_amplitudes computes (its loop and array).
+MAX_IMPACTS = 10_000_000
+
+
 def housner_amplitudes(theta0, alpha, e, n):
     """Successive rocking amplitudes of a freely rocking rigid block.
 
@@ -408,9 +414,7 @@ def housner_amplitudes(theta0, alpha, e, n):
     alpha = float(_check_alpha(alpha))
     theta0 = float(_check_theta0(theta0, alpha))
     e = _check_e(e)
-    n = int(n)
-    if n < 0:
-        raise ValueError(f"n must be >= 0; got {n}")
+    n = V.integer("n", n, 0, MAX_IMPACTS)
     out = np.empty(n + 1)
     out[0] = theta0
     for k in range(n):
@@ -1084,6 +1088,8 @@ def _levenberg_marquardt(fun, z0, *, max_nfev=200, xtol=1e-10, ftol=1e-12, gtol=
                 step = np.linalg.solve(A + lam * np.diag(d), -gvec)
             except np.linalg.LinAlgError:
                 lam *= 10.0
+                if lam > 1e16:       # a bound: singular however much the step is damped
+                    return z, r, nfev, False, "singular normal equations"
                 continue
             z_new = z + step
             r_new = fun(z_new)
@@ -1212,6 +1218,9 @@ def fit_free_rocking(half_cycle_durations, theta0, alpha, peaks=None, model="hou
     """
     if not isinstance(model, str):
         raise ValueError(f"model must be a string; got {model!r}")
+    max_nfev = V.integer("max_nfev", max_nfev, 1, 10 ** 7)
+    V.positive("xtol", xtol)
+    V.positive("ftol", ftol)
     if predictor is None and model != "housner":
         from .foundation import get_predictor     # raises NotImplementedError if unknown
         predictor = get_predictor(model)
