@@ -34,6 +34,9 @@ x_cm'' = -a_g, z_cm'' = -G.
 
 Lift-off.  The contact state is rewritten in flight coordinates; the
 corner(s) that touched the ground are left on it with zero normal velocity.
+In full contact the base lifts off flat when G reaches 0 (flexible_friction's
+C_FLIGHT, or its uplift and slip margins, which vanish with N = (1 + mb) G
+when the column is at rest: G <= G_FLAT g there counts as lift-off).
 The flight is taken only where it is consistent: the free normal
 acceleration of the pivot must not point into the ground (beyond A_TOL g).
 Where it does (a slip onset of :mod:`.flexible_friction` with N just above
@@ -41,9 +44,14 @@ Where it does (a slip onset of :mod:`.flexible_friction` with N just above
 lacks, mu_s = inf) the body slide-rocks if a slip direction is consistent,
 else the pivot is held sticking (jam, disc[D_AUX] = JAM, as
 kernels/contact.py's; logged as lift-off-held) until the flight becomes
-consistent or N returns above N_RELOAD times the weight (logged as
-reload).  No flight of a flat body is refused: a corner that sinks lands at
-once.
+consistent (free normal acceleration >= A_TOL g) or stick is admissible
+again (N above N_RELOAD times the weight and |F| <= mu_s N; logged as
+reload).  The same rule resolves a slip start that flexible_friction finds
+inconsistent in both directions (Painleve-type, its FAIL_INCONSISTENT):
+flight if consistent, else jam.  A jam that starts while the pivot slips
+first stops the slip by a plastic horizontal impulse at the pivot (the
+kinetic-metric projection onto d' = 0).  No flight of a flat body is
+refused: a corner that sinks lands at once.
 
 Events in flight (terminal: landing, overturning; the rest observers):
   L_LAND_P, L_LAND_M  height of the base corner sigma = +1 / -1,
@@ -64,9 +72,11 @@ if that would pull (L_n < 0) a tangential impulse alone stops the corner's
 slip and the corner leaves the ground (a new flight).  Else the corner
 becomes the pivot:
 ROCK if it sticks, SLIDE_ROCK (slip direction: its tangential velocity)
-if it slips, where the mode's normal force is >= 0; where N < 0 and the
-corner's free normal acceleration is upward, a new flight starts at once
-(every landing ends a flight: M_N_FLIGHTS counts the flights).
+if it slips, where that mode is consistent (N >= 0, and |F| <= mu_s N for
+stick, else a slip start); where it is not and the corner's free normal
+acceleration is upward, a new flight starts at once (every landing ends a
+flight: M_N_FLIGHTS counts the flights); else as at a lift-off (slide-rock
+or jam).
 
 Flat landing: the other corner is within FLAT_RTOL B of the ground
 (|sin theta| <= FLAT_RTOL) and the single-corner impact above would leave
@@ -99,13 +109,14 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground
-from .flexible import track_u
+from .flexible import base_inertia, positions, track_u
 from .flexible_friction import after_step as ff_after_step
 from .flexible_friction import event as ff_event
 from .flexible_friction import init_state as ff_init_state
 from .flexible_friction import rhs as ff_rhs
 from .flexible_friction import transition as ff_transition
-from .flexible_friction import (N_RELOAD, R_LIFT_OFF, R_SLIP_STICK,
+from .flexible_friction import (C_SLIP_STICK, C_UPLIFT, N_RELOAD,
+                                R_LIFT_OFF, R_SLIP_STICK,
                                 set_mode, slip_rock, start_from_flat,
                                 start_slip_rock, stick_rock)
 from .friction import routh_general, track_slide
@@ -113,10 +124,10 @@ from .hybrid import (C_NHIST, MAX_ZERO_LENGTH, book_time, check_energy,
                      final_status, init_metrics, integrate_hybrid,
                      log_event, sweep_rows)
 from .layout import (D_AUX, D_MODE, D_PIVOT, D_SLIP_DIR, EV_CONTACT, EV_FLIGHT,
-                     EV_LIFT_OFF_HELD, EV_RELOAD,
+                     EV_LIFT_OFF_HELD, EV_RELOAD, FAIL_INCONSISTENT,
                      FAIL_TRANSITIONS, FLIGHT, F_ALPHA, F_B, F_G, F_H, F_HB,
                      F_IB, F_IM, F_MB, F_MU_K, F_MU_S, F_THETA_OVER, F_WN,
-                     F_ZETA, MODE_FLIGHT, MODE_REST, MODE_ROCK,
+                     F_ZETA, MODE_FLIGHT, MODE_REST, MODE_ROCK, MODE_SLIDE,
                      MODE_SLIDE_ROCK, M_IMPACTS, M_MAX_JUMP, M_N_FLIGHTS,
                      M_NREJECT, M_NSTEPS, M_T_FINAL, M_T_FLIGHT, M_T_LAST_IMPACT,
                      M_T_PREV, M_T_UPLIFT,
@@ -149,6 +160,8 @@ FLAT_RTOL = 1e-9
 # a flight is consistent while no ground corner's free normal acceleration
 # is below -A_TOL g
 A_TOL = 1e-9
+# in full contact, G below G_FLAT g counts as 0: the base lifts off flat
+G_FLAT = 1e-9
 # disc[D_AUX] in ROCK: the pivot is held although N < 0 (no consistent mode)
 JAM = 1
 
@@ -324,10 +337,16 @@ def event(k, t, y, par, disc, hdr, smp):
                 return (A_TOL * par[F_G]
                         - corner_normal_acc(s, t, y, par, hdr, smp), 0.0, True)
             if k == R_SLIP_STICK:
-                # ... or in contact once N is back above 0
-                _u, _t, _F, N = stick_rock(t, y, s, par, hdr, smp)
-                return (N_RELOAD * (1.0 + par[F_MB]) * par[F_G] - N, 0.0,
-                        True)
+                # ... or in contact once stick is admissible again
+                _u, _t, F, N = stick_rock(t, y, s, par, hdr, smp)
+                g = N_RELOAD * (1.0 + par[F_MB]) * par[F_G] - N
+                if np.isfinite(par[F_MU_S]):
+                    g = max(g, abs(F) - par[F_MU_S] * N)
+                return g, 0.0, True
+        if not np.isfinite(par[F_MU_S]) and (
+                (k == R_SLIP_STICK and disc[D_MODE] == MODE_ROCK)
+                or (k == C_SLIP_STICK and disc[D_MODE] == MODE_REST)):
+            return np.inf, 0.0, True        # mu_s = inf: stick never fails
         return ff_event(k, t, y, par, disc, hdr, smp)
     if k == L_LAND_P or k == L_LAND_M:
         sg = 1 if k == L_LAND_P else -1
@@ -359,6 +378,13 @@ def event(k, t, y, par, disc, hdr, smp):
 
 
 @jit
+def effective_g(t, par, hdr, smp):
+    """G = g + a_v at t."""
+    _ag, av = ground(t, hdr, smp)
+    return par[F_G] + av
+
+
+@jit
 def static_margin(t, y, par, disc, hdr, smp):
     return 1.0   # no static phase: the column vibrates in every mode
 
@@ -384,20 +410,47 @@ def start_flight(t, y, par, disc, met):
 
 
 @jit
-def slip_or_jam(t, y, s, par, disc, hdr, smp, met, log, cnt):
-    """Rocking on s (contact coordinates), stick-rock would need N < 0 and
-    the flight is inconsistent (the corner's free normal acceleration
-    points into the ground): slide-rock if a slip direction is consistent,
+def stop_slip(y, s, par):
+    """Stop the pivot's slip by a plastic horizontal impulse at the pivot
+    (contact coordinates on s): q'+ = q'- + M^-1 e_d lambda with d'+ = 0,
+    the kinetic-metric projection onto d' = 0 (it only dissipates)."""
+    H = par[F_H]
+    mb = par[F_MB]
+    r = y[0] - s * par[F_B]
+    c = math.cos(y[2])
+    _X, Y, _Xb, Yb = positions(r, c, math.sin(y[2]), s, par)
+    m22 = r * r + base_inertia(par) + H * H
+    yc = Y + mb * Yb
+    # M z = e_d, M = [[1, H, c], [H, m22, yc], [c, yc, 1 + mb]]
+    zu = H * yc - m22 * c
+    zt = H * c - yc
+    zd = m22 - H * H
+    det = c * zu + yc * zt + (1.0 + mb) * zd
+    lam = -y[5] * det / zd
+    y[1] += zu / det * lam
+    y[3] += zt / det * lam
+    y[5] = 0.0
+
+
+@jit
+def fly_slip_or_jam(t, y, s, a_min, try_slip, par, disc, hdr, smp, met, log,
+                    cnt):
+    """Rocking on s (contact coordinates, theta != 0) where no contact mode
+    is consistent so far: stick-rock needs N < 0 or more than mu_s N.
+    SEG_FLIGHT if the pivot's free normal acceleration is at least a_min;
+    else slide-rock if ``try_slip`` and a slip direction is consistent;
     else jam: the pivot is held, sticking, until the flight becomes
-    consistent or N returns above 0 (as kernels/contact.py's JAM; logged as
-    a held lift-off and a reload).  Returns RUNNING or a failure."""
-    mu_s = par[F_MU_S]
-    if np.isfinite(mu_s):
+    consistent or stick is admissible again (as kernels/contact.py's JAM;
+    logged as a held lift-off and a reload)."""
+    if corner_normal_acc(s, t, y, par, hdr, smp) >= a_min:
+        return SEG_FLIGHT
+    if try_slip and np.isfinite(par[F_MU_S]):
         _u, _t, F, _N = stick_rock(t, y, s, par, hdr, smp)
         if start_slip_rock(t, y, s, F, par, disc, hdr, smp, met, log, cnt,
                            False) == RUNNING:
             return RUNNING
-    y[5] = 0.0
+    if y[5] != 0.0:
+        stop_slip(y, s, par)
     set_mode(disc, MODE_ROCK, s, 0)
     disc[D_AUX] = JAM
     log_event(log, cnt, t, EV_LIFT_OFF_HELD, y[3], y[3], y[2], s)
@@ -408,14 +461,14 @@ def slip_or_jam(t, y, s, par, disc, hdr, smp, met, log, cnt):
 def lift_off_check(t, y, par, disc, hdr, smp, met, log, cnt):
     """flexible_friction stopped with FLIGHT (N = 0 while rocking, or
     G <= 0 flat; it logged the lift-off).  SEG_FLIGHT if the flight is
-    consistent (y still in contact coordinates), else ``slip_or_jam``."""
+    consistent (y still in contact coordinates), else
+    ``fly_slip_or_jam``."""
     mode = disc[D_MODE]
     s = disc[D_PIVOT]
-    if (mode == MODE_ROCK or mode == MODE_SLIDE_ROCK) and y[2] != 0.0:
-        if mode == MODE_ROCK and (corner_normal_acc(s, t, y, par, hdr, smp)
-                                  < -A_TOL * par[F_G]):
-            return slip_or_jam(t, y, s, par, disc, hdr, smp, met, log, cnt)
-    else:
+    if mode == MODE_ROCK and y[2] != 0.0:
+        return fly_slip_or_jam(t, y, s, -A_TOL * par[F_G], True, par, disc,
+                               hdr, smp, met, log, cnt)
+    if mode != MODE_SLIDE_ROCK or y[2] == 0.0:
         y[2] = 0.0
         y[3] = 0.0
     return SEG_FLIGHT
@@ -516,11 +569,10 @@ def pick_after_landing(sg, vt, chatter, t, y, par, disc, hdr, smp, met, log,
                        cnt):
     """Corner sg is on the ground with zero normal velocity (flight
     coordinates): rock on it (stick, vt = 0) or slide-rock (vt != 0) where
-    the mode's N >= 0; where N < 0, a new flight if the corner's free
-    normal acceleration is upward (after a chatter landing: clearly, beyond
-    A_TOL g), else ``slip_or_jam``."""
-    a_n = corner_normal_acc(sg, t, y, par, hdr, smp)
-    fly = a_n >= (A_TOL if chatter else -A_TOL) * par[F_G]
+    the mode is consistent, else ``fly_slip_or_jam`` (a new flight needs
+    the corner's free normal acceleration >= -A_TOL g, after a chatter
+    landing >= A_TOL g).  Returns SEG_CONTACT, RUNNING (a new flight) or a
+    failure."""
     B = par[F_B]
     # on the ground exactly, normal velocity 0 (the landing event is then
     # inactive if a new flight starts)
@@ -528,6 +580,8 @@ def pick_after_landing(sg, vt, chatter, t, y, par, disc, hdr, smp, met, log,
     y[7] = lever(sg, B, math.cos(y[2]) * y[3])
     flight = y.copy()
     to_contact(y, sg, par)
+    a_min = (A_TOL if chatter else -A_TOL) * par[F_G]
+    st = SEG_FLIGHT
     if vt == 0.0:
         y[5] = 0.0
         _u, _t, F, N = stick_rock(t, y, sg, par, hdr, smp)
@@ -536,17 +590,25 @@ def pick_after_landing(sg, vt, chatter, t, y, par, disc, hdr, smp, met, log,
             set_mode(disc, MODE_ROCK, sg, 0)
             return SEG_CONTACT
         if N >= 0.0:
-            return contact_status(start_slip_rock(t, y, sg, F, par, disc, hdr,
-                                                  smp, met, log, cnt, False))
+            st = start_slip_rock(t, y, sg, F, par, disc, hdr, smp, met, log,
+                                 cnt, False)
+            if st == RUNNING:
+                return SEG_CONTACT
+            st = fly_slip_or_jam(t, y, sg, a_min, False, par, disc, hdr, smp,
+                                 met, log, cnt)
+        else:
+            st = fly_slip_or_jam(t, y, sg, a_min, True, par, disc, hdr, smp,
+                                 met, log, cnt)
     else:
         sigma = 1 if vt > 0.0 else -1
         _u, _t, _d, N = slip_rock(t, y, sg, sigma, par, hdr, smp)
         if N >= 0.0:
             set_mode(disc, MODE_SLIDE_ROCK, sg, sigma)
             return SEG_CONTACT
-    if not fly:
-        return contact_status(slip_or_jam(t, y, sg, par, disc, hdr, smp, met,
-                                          log, cnt))
+        st = fly_slip_or_jam(t, y, sg, a_min, False, par, disc, hdr, smp, met,
+                             log, cnt)
+    if st != SEG_FLIGHT:
+        return contact_status(st)
     # the landing ended a flight, a new one starts at once
     for i in range(N_STATE):
         y[i] = flight[i]
@@ -613,9 +675,25 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             if k == R_SLIP_STICK:
                 log_event(log, cnt, t, EV_RELOAD, y[3], y[3], y[2], s)
                 return RUNNING
+        m = disc[D_MODE]
+        if (m == MODE_REST or m == MODE_SLIDE) and (
+                k == C_UPLIFT or k == C_SLIP_STICK) and not effective_g(
+                    t, par, hdr, smp) > G_FLAT * par[F_G]:
+            # at G = 0 the uplift and friction margins of a body at rest
+            # vanish with N = (1 + mb) G: the whole base leaves the ground
+            book_time(t, disc, met)
+            track_slide(y[4], met)
+            log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], 0.0, 0)
+            return lift_off_check(t, y, par, disc, hdr, smp, met, log, cnt)
         st = ff_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt)
         if st == FLIGHT:
             return lift_off_check(t, y, par, disc, hdr, smp, met, log, cnt)
+        m = disc[D_MODE]
+        if st == FAIL_INCONSISTENT and y[2] != 0.0 and (
+                m == MODE_ROCK or m == MODE_SLIDE_ROCK):
+            # no slip direction is consistent (Painleve-type): fly or jam
+            return fly_slip_or_jam(t, y, disc[D_PIVOT], -A_TOL * par[F_G],
+                                   False, par, disc, hdr, smp, met, log, cnt)
         return st
     th = y[2]
     sth = 1 if th >= 0.0 else -1
