@@ -495,8 +495,14 @@ def corner_impact(pre, vs, s, b, h, iG, i0, e, mu_s, mu_k):
     mass, from theta'- = pre and the slip velocity vs: a plastic impact with
     stick at the new corner (in ROCK vs = 0 and this is Housner's map), then
     the impulse-ratio check: the impact slips when friction cannot supply
-    the tangential impulse."""
+    the tangential impulse.  With a slip velocity, a given e that would
+    raise the kinetic energy is replaced by the plastic stick."""
     post = e * pre + (h / i0) * vs
+    if vs != 0.0 and kinetic(post, 0.0, -s, b, h, iG) > kinetic(pre, vs, s, b, h, iG):
+        # a given e unlike the plastic one turns the slip's momentum into
+        # more rotation than the impact can give: the plastic stick (angular
+        # momentum about the new corner kept), which always dissipates
+        post = ((iG + h * h - b * b) / i0) * pre + (h / i0) * vs
     lam_x = h * post - (vs + h * pre)
     lam_y = -s * b * (post + pre)
     dpost = 0.0

@@ -490,6 +490,22 @@ def test_impacts_never_create_energy_with_any_restitution(b, h, mu_s, k, e, s, w
         assert abs(lx) <= mu_s * ly * (1 + 1e-9) + 1e-12
 
 
+def test_given_e_with_a_fast_slip_falls_back_to_the_plastic_stick():
+    """Found by hypothesis (issue #14 sweep): b = 0.875, h = 1.5, e = 0, mu_s = 3, slide-rock on
+    s = -1 at theta'- = 1 with slip -2.  The stick map with the given e, theta'+ = e theta'- +
+    (h/I_0) v_s, gave 1.119 J/kg from 1.010 (friction can hold it: |L_x|/L_y = 2.8 < 3).  The
+    plastic stick (angular momentum about the new corner kept) is used instead and dissipates."""
+    body = RigidBlock.rectangle(b=0.875, h=1.5, e=0.0)
+    par = rigid_friction_par(body, Friction(3.0, 0.3))
+    b, h, iG = 0.875, 1.5, par[L.Q_IG]
+    i0 = iG + b * b + h * h
+    post, dpost = kernel_impact(par, L.MODE_SLIDE_ROCK, -1, 1.0, -2.0)
+    k0 = 0.5 * ((-2.0 + h) ** 2 + b ** 2 + iG)
+    k1 = 0.5 * ((dpost + h * post) ** 2 + (b * post) ** 2 + iG * post ** 2)
+    assert dpost == 0.0 and k1 < k0
+    assert post == pytest.approx(((iG + h * h - b * b) / i0) * 1.0 + (h / i0) * -2.0, rel=1e-14)
+
+
 def test_given_e_zero_slipping_impact_no_longer_gains_energy():
     """Issue #18: e = 0 with mu = 1.15 jumped from 0.146 to 1.317 J/kg at t = 0.314 s and
     overturned.  Friction cannot supply the impulse that stops the block (|L_x|/L_y = h/b = 3.6
