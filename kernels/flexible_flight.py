@@ -70,13 +70,12 @@ L = -W^-1 v) if L_n >= 0 and |L_t| <= mu_s L_n, else Routh's incremental
 impact (:func:`.friction.routh_general`, mu_s / mu_k).  mu_s = inf: stick;
 if that would pull (L_n < 0) a tangential impulse alone stops the corner's
 slip and the corner leaves the ground (a new flight).  Else the corner
-becomes the pivot:
-ROCK if it sticks, SLIDE_ROCK (slip direction: its tangential velocity)
-if it slips, where that mode is consistent (N >= 0, and |F| <= mu_s N for
-stick, else a slip start); where it is not and the corner's free normal
-acceleration is upward, a new flight starts at once (every landing ends a
-flight: M_N_FLIGHTS counts the flights); else as at a lift-off (slide-rock
-or jam).
+becomes the pivot: ROCK if it sticks, SLIDE_ROCK (slip direction: its
+tangential velocity) if it slips, where that mode is consistent (N >= 0,
+and |F| <= mu_s N for stick, else a slip start); where it is not and the
+corner's free normal acceleration is upward, a new flight starts at once
+(every landing ends a flight: M_N_FLIGHTS counts the flights); else as at
+a lift-off (slide-rock or jam).
 
 Flat landing: the other corner is within FLAT_RTOL B of the ground
 (|sin theta| <= FLAT_RTOL) and the single-corner impact above would leave
@@ -94,12 +93,22 @@ impact (M_IMPACTS) and dissipates.
 
 Chatter.  A landing within eps_t (O_EPS_T) of the previous impact, or whose
 corner comes down slower than eps_omega (O_EPS_OMEGA) times B, lands for
-good: no new flight starts from it (where the contact mode needs N < 0 the
-body slide-rocks or jams, as above).  Every loop is bounded; the driver
-stops zero-time transition loops.
+good: a new flight starts from it only if the corner's free normal
+acceleration is clearly upward (>= A_TOL g, as a jam ends), else the body
+slide-rocks or jams.  So a flight that starts with the corner sinking by
+rounding cannot repeat in zero time.  Every loop is bounded: the phases of
+one run (MAX_PHASES) and zero-time phase switches (the driver's
+MAX_ZERO_LENGTH) end in FAIL_TRANSITIONS.
+
+Phases.  ``run`` calls the driver once per contact phase, on the first six
+entries of y (N_CONTACT) exactly as flexible_friction does, and once per
+flight phase on all eight; a transition that switches ends its phase
+(SEG_FLIGHT, SEG_CONTACT).  A run that never lifts off therefore takes
+flexible_friction's steps and gives its results to the last bit.
 
 Metrics: those of :mod:`.flexible_friction` (the slide tracked in contact
-modes only) plus M_N_FLIGHTS (flights), M_T_FLIGHT (s in flight) and
+modes only: after a landing d is the pivot's displacement, flights
+included) plus M_N_FLIGHTS (flights), M_T_FLIGHT (s in flight) and
 M_MAX_JUMP (m, largest rise of the centre of mass of mass + base above its
 rest height, tracked in flight).  mu_s = inf is allowed: it never slips.
 """
