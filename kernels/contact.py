@@ -632,6 +632,13 @@ def event(k, t, y, par, disc, hdr, smp):
     if k == K_WALL:
         if not wall_active(par) or disc[D_CS2] == CS_WALL_BASE:
             return np.inf, 0.0, True
+        if disc[D_CS2] == CS_FREE:
+            # top-corner ladder (top_ladder): the wall's force reaching 0
+            acc = np.empty(3)
+            _ok, _N0, _F0, _N1, _F1, N2, _F2 = mode_solve(
+                t, y, par, disc[D_CS0], disc[D_CS1], disc[D_CS2], hdr, smp,
+                acc)
+            return N2, 0.0, True
         gap, vn, _vt = point_kin(2, y, par)
         if vn < 0.0:
             return gap, vn, True
@@ -1611,7 +1618,7 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
         settle = True
     elif separated:
         return enter_flight(t, y, par, disc, met, log, cnt)
-    if settle and abs(vt) <= V_TOL:
+    if settle and (abs(vt) <= V_TOL or chatter):
         y[1] = 0.0
         project_single(j, y, par, True)
         disc[D_PIVOT] = s
@@ -1621,7 +1628,41 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
             disc[D_PIVOT] = s
             log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
             return RUNNING
+        if top_ladder(j, t, y, par, disc, hdr, smp):
+            log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
+            return RUNNING
     return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
+@jit
+def top_ladder(j, t, y, par, disc, hdr, smp):
+    """At rest with the top corner on the wall and base corner j on the
+    ground, where friction cannot hold the pivot (the sticking wall rest is
+    inadmissible): the pivot slips while the top corner stays on the wall
+    (SLIDE_ROCK with the wall contact closed, CS_FREE), in the direction
+    whose mode solve is consistent (both normal forces >= 0, the slip
+    accelerating its own way).  Without it, a block pressed into the wall
+    by the ground's push and tipping onto it repeated zero-velocity wall
+    impacts and slip starts for ever (a step-budget failure).  The phase
+    ends when the wall's force reaches 0 (K_WALL), the slip stops (K_STICK)
+    or the block lands flat (K_IMPACT).  Returns False if neither slip
+    direction is consistent."""
+    if not np.isfinite(par[C_MU_S]):
+        return False
+    acc = np.empty(3)
+    tol = 1e-12 * (par[P_G] + abs(y[1]))
+    for sig in (1, -1):
+        st = slip_state(sig)
+        st0 = st if j == 0 else CS_OPEN
+        st1 = st if j == 1 else CS_OPEN
+        ok, N0, _F0, N1, _F1, N2, _F2 = mode_solve(t, y, par, st0, st1,
+                                                   CS_FREE, hdr, smp, acc)
+        N = N1 if j == 1 else N0
+        _an, at = contact_acc(j, y, par, acc)
+        if ok and N >= 0.0 and N2 >= 0.0 and sig * at > tol:
+            set_contacts(disc, st0, st1, CS_FREE)
+            return True
+    return False
 
 
 @jit
@@ -1686,6 +1727,11 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return landing(k - K_LAND0, t, y, par, disc, hdr, smp, opt, met, log,
                        cnt)
     if k == K_WALL:
+        if mode == MODE_SLIDE_ROCK and disc[D_CS2] == CS_FREE:
+            # top-corner ladder: the wall's force reached 0
+            log_event(log, cnt, t, EV_WALL_RELEASE, y[1], y[1], y[0], s)
+            return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
+                               False)
         return wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
     if k == K_WALL_BASE:
         if mode != MODE_FLIGHT and disc[D_CS2] == CS_WALL_BASE:
