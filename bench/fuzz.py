@@ -21,32 +21,47 @@ the original difference is an integration-error effect at an outcome boundary an
 under ``boundary:<invariant>`` (reported, not a failure); if it still differs, or a run of the
 pair failed, the cell gets ``violated:<invariant>``.
 
-* ``mirror``: a two-sided body (every family but the wall) under sign -1 gives the same result
-  as under sign +1 (the one-sine, half-sine and one-cosine pulses of sign -1 are exact mirror
-  images), run with ``early_exit=False``.  Wall family: (wall side s, sign +1) against (side
-  -s, sign -1).
+* ``mirror``: a two-sided body (every family but the wall ones) under sign -1 gives the same
+  result as under sign +1 (the one-sine, half-sine and one-cosine pulses of sign -1 are exact
+  mirror images), run with ``early_exit=False``.  Wall, flexible_wall and contact families: (wall
+  side s, sign +1) against (side -s, sign -1).
 * ``scale``: the same scene with every length scaled by k (p by 1/sqrt(k); wall gap, height and
   slide tolerance scaled; t_after, fixed dt and the chatter thresholds scaled in time), the same
   a_p/(g tan alpha) and omega_p/p.  Not exact in floating point (atol is absolute in rad/s):
-  boundary rule.
+  boundary rule.  Not run for the contact family.
 * ``mu_inf``: ``Friction(1e6)`` against no friction (friction families; the flexible one with
   ``lift_off="hold"`` and the same base mass; cells where the friction run held a lift-off are
   not comparable and skipped).  Outcome only ("slide" counts as "safe" for mu = 1e6 with a
   residual slip below 1 um).
 * ``tall_wall``: a wall at gap >= 2h (either side, any height) against no wall (wall family;
-  README: "bit for bit").
+  README: "bit for bit").  flexible_wall: gap >= 2H (H = body.H) against the flexible kernel, the
+  same *status* and max rotation to REL_EXACT (README: "step for step").  contact: gap >= 2h
+  against the same friction scene without a wall (rigid_friction, or the contact model in flight
+  mode), outcome only; skipped (not comparable): cells where the tall-wall run hit the wall (a
+  block that slides or flies can travel to a wall at gap >= 2h), and cells whose reference
+  stopped at lift-off (lift_off "stop", outcome "flight": with a wall the contact model always
+  flies, README "The contact model").
 * ``early_exit``: the spectrum run (``early_exit=True``) against ``simulate`` of the same cell
   (``early_exit=False``): same outcome (README: the early decisions are exact).
 * ``energy``: in ``simulate`` runs, after the pulse has ended, the mechanical energy computed
   from the history never rises by more than ``ENERGY_TOL`` (relative to the energy scale) above
   its running minimum.  Rigid, wall: E = theta'^2/(2p^2) + cos(alpha - |theta|) - cos(alpha)
   [M g R].  Friction: (d' + Y_G theta')^2/2 + (X_G theta')^2/2 + I_G theta'^2/(2M) + g Y_G.
-  Flexible (both): kinetic energy of the mass, base and rotary inertias with the base slip,
-  + K u^2/2 + gravity (physics.md 3.4, 4.4).  Not checked: the pivot-switch (I1) impact map
+  Flexible (all three): kinetic energy of the mass, base and rotary inertias with the base slip,
+  + K u^2/2 + gravity (physics.md 3.4, 4.4; flexible_wall: no slip, the base mass of full
+  contact).  Contact: the history's d, z are the base midpoint P, the CM is P + h (sin theta,
+  cos theta): E = (v_Gx^2 + v_Gy^2)/2 + I_G theta'^2/(2M) + g (y_G - h).  Not checked: the pivot-switch (I1) impact map
   (it creates energy by design, README) and the foundation family (spring energy of the
   two-spring model not in the history; the switching model gains energy at uplift by design).
 * ``stiff``: (flexible family, reported only) omega_n/p = 1000 against ``rigid_equivalent()``:
   outcome mismatches are counted under ``stiff_mismatch``, never a failure.
+
+Families: rigid, wall (rigid_wall), friction (rigid_friction), flexible, flexible_friction
+(lift_off "stop" or "hold"), foundation (two-spring, switching, linear), flexible_wall (a
+FlexibleBody drawn as in flexible with a Wall drawn as in wall, gap > 0 only: gap 0 is refused
+for flexible bodies) and contact (RigidBlock.rectangle, a wall with gap > 0 and height None or
+>= 2h, Friction(mu) with lift_off "stop" or "flight", mu 0.05-2, or mu = inf with "flight" in
+15 % of batches: the contact model).
 
 Usage::
 
@@ -73,7 +88,9 @@ from collections import Counter, defaultdict
 import numpy as np
 import pandas as pd
 
-FAMILIES = ("rigid", "wall", "friction", "flexible", "flexible_friction", "foundation")
+FAMILIES = ("rigid", "wall", "friction", "flexible", "flexible_friction", "foundation", "flexible_wall",
+            "contact")
+WALL_FAMILIES = ("wall", "flexible_wall", "contact")
 PULSES = ("one-sine", "half-sine", "one-cosine")
 REL_EXACT = 1e-6
 TIGHT_RTOL = 1e-11
@@ -135,6 +152,26 @@ def _flex_body(rng, friction=False):
     return d
 
 
+def _flex_H(B):
+    """Half-height H of the flexible body drawn by ``_flex_body`` (R0 cos alpha)."""
+    return 9.80665 / (B["p"] ** 2 * (1 + B["rotary_inertia_ratio"])) * math.cos(B["alpha"])
+
+
+def _wall_draw(rng, h, gap_zero=True, low=True):
+    """A wall as the wall family draws it (h: the body's half-height).  ``gap_zero=False``: gap > 0
+    only (the 5 % of gap-0 draws go to the small gaps); ``low=False``: height None or >= 2h."""
+    u = rng.uniform()
+    if gap_zero and u < 0.05:
+        gap = 0.0
+    elif u < 0.15:
+        gap = 2 * h * _logu(rng, 1.0, 3.0)
+    else:
+        gap = _logu(rng, 1e-9, 2 * h)
+    return {"gap": gap, "side": int(rng.choice([-1, 1])),
+            "height": None if rng.uniform() < 0.7 else 2 * h * _logu(rng, 0.1 if low else 1.0, 2.0),
+            "restitution": 1.0 if rng.uniform() < 0.5 else float(rng.uniform(0.0, 1.0))}
+
+
 def _friction(rng):
     mu_s = _logu(rng, 0.05, 2.0)
     return {"mu_s": mu_s, "mu_k": mu_s if rng.uniform() < 0.5 else mu_s * float(rng.uniform(0.5, 1.0))}
@@ -150,12 +187,18 @@ def draw_batch(family, seed, batch, chunk=32):
         P["body"] = _rigid_body(rng)
     elif family == "wall":
         P["body"] = _rigid_body(rng, rect_only=True)
-        h = P["body"]["h"]
-        u = rng.uniform()
-        gap = 0.0 if u < 0.05 else (2 * h * _logu(rng, 1.0, 3.0) if u < 0.15 else _logu(rng, 1e-9, 2 * h))
-        P["wall"] = {"gap": gap, "side": int(rng.choice([-1, 1])),
-                     "height": None if rng.uniform() < 0.7 else 2 * h * _logu(rng, 0.1, 2.0),
-                     "restitution": 1.0 if rng.uniform() < 0.5 else float(rng.uniform(0.0, 1.0))}
+        P["wall"] = _wall_draw(rng, P["body"]["h"])
+    elif family == "flexible_wall":
+        P["body"] = _flex_body(rng)
+        P["wall"] = _wall_draw(rng, _flex_H(P["body"]), gap_zero=False)
+    elif family == "contact":
+        P["body"] = _rigid_body(rng, rect_only=True)
+        P["wall"] = _wall_draw(rng, P["body"]["h"], gap_zero=False, low=False)
+        if rng.uniform() < 0.15:
+            P["friction"] = {"mu_s": math.inf, "mu_k": math.inf, "lift_off": "flight"}
+        else:
+            P["friction"] = _friction(rng)
+            P["friction"]["lift_off"] = "stop" if rng.uniform() < 0.5 else "flight"
     elif family == "friction":
         P["body"] = _rigid_body(rng)
         P["friction"] = _friction(rng)
@@ -237,7 +280,8 @@ def build_scene(P, scale=1.0, variant=None):
         kw["wall"] = fr.Wall(W["gap"] * scale, -W["side"] if variant == "mirror_wall" else W["side"],
                              None if W["height"] is None else W["height"] * scale, W["restitution"])
     if variant == "tall_wall":
-        kw["wall"] = fr.Wall(2 * body.h * P["tall_gap"], P["tall_side"], None, 1.0)
+        h = body.H if P["body"]["kind"] == "flexible" else body.h
+        kw["wall"] = fr.Wall(2 * h * P["tall_gap"], P["tall_side"], None, 1.0)
     if P["friction"] is not None and variant != "no_friction":
         F = P["friction"]
         lift = F.get("lift_off", "stop")
@@ -330,10 +374,13 @@ def _bad_numbers(r):
     return not all(np.isfinite(float(v)) for v in vals)
 
 
-def _same(a, b, outcome_only=False):
-    """The tolerance rule: same outcome and max|theta|/alpha within REL_EXACT."""
+def _same(a, b, outcome_only=False, status=False):
+    """The tolerance rule: same outcome and max|theta|/alpha within REL_EXACT (``status``: the same
+    status too, e.g. safe:rest against safe:moving)."""
     oa, ob = a["outcome"], b["outcome"]
     if oa != ob:
+        return False
+    if status and a["status"] != b["status"]:
         return False
     if outcome_only:
         return True
@@ -371,7 +418,7 @@ class BatchResult:
             self.details[key].append(f"{kind}: {detail}")
 
 
-def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None, limit=None):
+def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None, limit=None, status=False):
     """Run two variants on ``cells`` and compare them row by row (with the tight re-run rule).
 
     run_a / run_b: functions (tight: bool) -> dict key -> row (key of the main grid cell)."""
@@ -405,7 +452,7 @@ def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None
         if a["status"].startswith("failed") or b["status"].startswith("failed"):
             res.tag(k, f"violated:{name}", f"check run status {a['status']} / {b['status']}")
             continue
-        if not _same(a, b, outcome_only):
+        if not _same(a, b, outcome_only, status):
             diff.append(k)
     if not diff:
         return
@@ -419,9 +466,9 @@ def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None
         return
     for k in diff:
         a, b = A[k], B[k]
-        what = (f"{a['outcome']} {float(a['max_rotation_ratio']):.9g} vs {b['outcome']} "
-                f"{float(b['max_rotation_ratio']):.9g}")
-        if k in At and k in Bt and _same(At[k], Bt[k], outcome_only) \
+        what = (f"{a['status'] if status else a['outcome']} {float(a['max_rotation_ratio']):.9g} vs "
+                f"{b['status'] if status else b['outcome']} {float(b['max_rotation_ratio']):.9g}")
+        if k in At and k in Bt and _same(At[k], Bt[k], outcome_only, status) \
                 and not At[k]["status"].startswith("failed"):
             res.boundary[name] += 1
         elif name == "mu_inf" and P["body"].get("e") is not None:
@@ -463,7 +510,18 @@ def energy(history, body, scene, family):
         XG = -s * b * np.cos(th) + h * np.sin(th)
         YG = s * b * np.sin(th) + h * np.cos(th)
         return 0.5 * (dd + YG * w) ** 2 + 0.5 * (XG * w) ** 2 + 0.5 * IG * w * w + g * (YG - h)
-    if family in ("flexible", "flexible_friction"):
+    if family == "contact":
+        # history: d, z = position of the base midpoint P; CM = P + h (sin th, cos th)
+        from fastrock.models import contact_par
+        from fastrock.kernels import layout as L
+        par = contact_par(body, scene["friction"], scene.get("wall"))
+        hm, IG = par[L.C_H1], par[L.C_IG]
+        z = history["z"].to_numpy()
+        dz = history["z_dot"].to_numpy()
+        vx = dd + hm * np.cos(th) * w
+        vy = dz - hm * np.sin(th) * w
+        return 0.5 * (vx * vx + vy * vy) + 0.5 * IG * w * w + g * (z + hm * np.cos(th) - hm)
+    if family in ("flexible", "flexible_friction", "flexible_wall"):
         if body.impact != "full-contact":
             return None
         u = history["u"].to_numpy()
@@ -587,14 +645,15 @@ def _checks(res, P, main, limit):
         return run
 
     # mirror symmetry (early_exit=False)
-    if fam == "wall":
+    if fam in WALL_FAMILIES:
         _pair_check(res, "mirror", P, cells, spec_rows(early_exit=False),
                     spec_rows("mirror_wall", early_exit=False, flip=True), limit=limit)
     else:
         _pair_check(res, "mirror", P, cells, spec_rows(early_exit=False),
                     spec_rows(early_exit=False, flip=True), limit=limit)
-    # scale invariance
-    _pair_check(res, "scale", P, cells, spec_rows(), spec_rows(scale=P["scale_k"]), limit=limit)
+    # scale invariance (not for the contact family: not in its brief, issue #14)
+    if fam != "contact":
+        _pair_check(res, "scale", P, cells, spec_rows(), spec_rows(scale=P["scale_k"]), limit=limit)
     if fam in ("friction", "flexible_friction"):
         def not_comparable(a, b):
             return int(a.get("lift_offs", 0) or 0) > 0
@@ -603,6 +662,16 @@ def _checks(res, P, main, limit):
                     limit=limit)
     if fam == "wall":
         _pair_check(res, "tall_wall", P, cells, spec_rows("tall_wall"), spec_rows("no_wall"), limit=limit)
+    if fam == "flexible_wall":     # README: the flexible kernel step for step
+        _pair_check(res, "tall_wall", P, cells, spec_rows("tall_wall"), spec_rows("no_wall"), limit=limit,
+                    status=True)
+    if fam == "contact":           # the contact model against rigid_friction / contact without a wall
+        def not_comparable(a, b):
+            # a block that slides or flies can reach a wall at gap >= 2h; and a wall with friction
+            # always runs in flight (README), so a reference stopped at lift-off ("stop") is not it
+            return int(a.get("wall_impacts", 0) or 0) > 0 or b["outcome"] == "flight"
+        _pair_check(res, "tall_wall", P, cells, spec_rows("tall_wall"), spec_rows("no_wall"), limit=limit,
+                    outcome_only=True, skip=not_comparable)
     if fam == "flexible" and P["stiff"]:
         try:
             A, ta, _ = spec_rows("stiff")(False)
