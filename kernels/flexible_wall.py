@@ -52,7 +52,7 @@ import numpy as np
 
 from .config import jit, jit_generic, jit_parallel
 from .excitation import excitation_end, ground_rates
-from .flexible import kinetic, positions, track_u
+from .flexible import C_UPLIFT, kinetic, positions, track_u, uplift_margin
 from .flexible import after_step as flexible_after_step
 from .flexible import event as flexible_event
 from .flexible import init_state as flexible_init_state
@@ -65,12 +65,18 @@ from .layout import (D_MODE, D_PIVOT, D_WALL_REST, EV_FLIGHT, EV_WALL_IMPACT,
                      F_G, F_H, F_HB, F_IMPACT, F_MB, F_THETA_OVER, F_WN,
                      F_ZETA, FW_E_W,
                      FW_THETA_W, FW_WALL_SIDE, IMPACT_PIVOT_SWITCH, LEANING,
-                     MODE_ROCK, MODE_WALL_REST, M_WALL_CAPPED,
+                     MODE_REST, MODE_ROCK, MODE_WALL_REST, M_WALL_CAPPED,
                      M_WALL_IMPACTS, N_DISC, O_EARLY_EXIT, O_T0, RUNNING,
                      SAFE_MOVING)
 from .rigid import track_rotation
 
 N_EVENTS = 8
+# small-gap limit: a wall closer than this rotation [rad] (0.2 um for
+# 2H = 2 m) blocks every uplift toward it; the body then only rocks away
+# from the wall, as Hogan's gap-0 block does.  Without it an elastic wall
+# at a gap of nanometres makes the body bounce in that gap thousands of
+# times a second until the step budget runs out.
+SMALL_GAP_ANGLE = 1e-7
 R_WALL = 7          # while rocking on the near corner: w theta reaches theta_w
 # events at rest on the wall
 W_RELEASE = 0       # the wall's reaction reaches 0 (terminal)
@@ -132,6 +138,12 @@ def event(k, t, y, par, disc, hdr, smp):
             _ag, _dag, av, dav = ground_rates(t, hdr, smp)
             return par[F_G] + av, dav, True
         return np.inf, 0.0, False
+    if k == C_UPLIFT and disc[D_MODE] != MODE_ROCK and \
+            par[FW_THETA_W] < SMALL_GAP_ANGLE:
+        # small gap: only the uplift away from the wall
+        g, gd = uplift_margin(t, y, -1 if par[FW_WALL_SIDE] > 0.0 else 1,
+                              par, hdr, smp)
+        return g, gd, True
     if k == R_WALL:
         w = par[FW_WALL_SIDE]
         if disc[D_MODE] == MODE_ROCK and disc[D_PIVOT] == w:
@@ -197,8 +209,36 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     if k == R_WALL and disc[D_MODE] == MODE_ROCK:
         book_time(t, disc, met)
         return wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
-    return flexible_transition(k, t, y, par, disc, hdr, smp, opt, met, log,
-                               cnt)
+    st = flexible_transition(k, t, y, par, disc, hdr, smp, opt, met, log,
+                             cnt)
+    w = par[FW_WALL_SIDE]
+    if st == RUNNING and par[FW_THETA_W] < SMALL_GAP_ANGLE and \
+            disc[D_MODE] == MODE_ROCK and disc[D_PIVOT] == w and \
+            y[2] == 0.0:
+        small_gap_block(t, y, par, disc, opt, met, log, cnt)
+    return st
+
+
+@jit
+def small_gap_block(t, y, par, disc, opt, met, log, cnt):
+    """Small-gap limit (SMALL_GAP_ANGLE): the body has just started to
+    rock on the corner near the wall at theta = 0 (an uplift, or the
+    pivot-switch map's new pivot), and the wall stops it at once.  From rest
+    it stays in full contact, with the wall taking the push.  Moving toward
+    the wall, the wall and the ground stop it together: a plastic impact
+    that keeps u' + H theta' (the full-contact ground map's projection,
+    never more energy), then full contact.  This differs from Hogan's
+    rebound with r = e_w, which the rigid block's gap 0 uses."""
+    pre = y[3]
+    disc[D_MODE] = MODE_REST
+    if pre == 0.0:
+        return
+    before = kinetic(y, disc[D_PIVOT], True, par)
+    y[1] += par[F_H] * pre
+    y[3] = 0.0
+    met[M_WALL_IMPACTS] += 1
+    check_energy(before, kinetic(y, disc[D_PIVOT], False, par), met)
+    log_event(log, cnt, t, EV_WALL_IMPACT, pre, 0.0, 0.0, disc[D_PIVOT])
 
 
 @jit

@@ -259,3 +259,22 @@ def test_initial_rotation_into_the_wall_is_refused():
     w = Wall(gap=0.1 * b.H)
     with pytest.raises(ValueError, match="theta0"):
         fr.simulate(b, pulse(3.0, 2.0), wall=w, theta0=-0.2)
+
+
+@pytest.mark.parametrize("impact", [I3, I1])
+@pytest.mark.parametrize("sign", [1, -1])
+def test_nanometre_gap_takes_the_small_gap_limit(impact, sign):
+    """Fuzz (flexible_wall:2026:5): an elastic wall 2 nm away made the body bounce in the gap
+    thousands of times a second until the step budget.  Below SMALL_GAP_ANGLE the wall blocks
+    every uplift toward it, and the body only rocks away from it, as Hogan's gap-0 block does: runs
+    end definite and cheap.  A pulse toward the wall first now never uplifts toward it."""
+    from fastrock.kernels.flexible_wall import SMALL_GAP_ANGLE
+    b = body(9.0, impact, zeta=0.05)
+    w = Wall(gap=2e-9, restitution=1.0)
+    assert w.limit_angle(b) < SMALL_GAP_ANGLE
+    r = fr.simulate(b, pulse(3.0, 2.0, sign), wall=w)
+    assert r.status.startswith(("safe", "overturn")), r.status
+    assert r.metrics["nfev"] < 50_000
+    h = r.history
+    pivots = np.asarray(h["pivot"])[np.asarray(h["contact"]) == "rock"]
+    assert not (pivots == w.side).any()            # never rocks on the corner near the wall
