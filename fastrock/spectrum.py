@@ -182,7 +182,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         "amplitude": amp, "amplitude_g": amp / body.g, "frequency_hz": omega / (2 * np.pi),
     })
     df = _add_results(df, status, MET, body, wall, friction if spec.friction else None)
-    if spec.name == "contact":
+    if spec.model.flight or spec.name == "contact":
         from .simulate import flight_metrics
         for k, v in flight_metrics(MET).items():
             df[k] = v

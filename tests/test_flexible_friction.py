@@ -335,7 +335,9 @@ def test_impact_rule_of_4_4_in_its_general_form():
     y_pre = y.copy()
     K.impact(1.0, y, par, disc, hdr, smp, met, log, cnt)
     assert y[3] == 0.0 and y[2] == 0.0
-    assert y[1] == pytest.approx(y_pre[1] + b.H * y_pre[3], abs=1e-15)
+    # both horizontal momenta kept (physics.md 4.4 printed u'+ = u'- + H theta'-, which counts
+    # the base's share twice: test_impact_with_a_raised_base_keeps_both_horizontal_momenta)
+    assert y[1] == pytest.approx(y_pre[1] + (b.H - hb) * y_pre[3], abs=1e-15)
     assert y[5] == pytest.approx(y_pre[5] + hb * y_pre[3], abs=1e-15)
     assert met[L.M_IMPACTS] == 1
 
@@ -435,3 +437,38 @@ def test_held_lift_offs_are_named_and_counted():
     # the stopped run ends where the held one first lifted off
     t_held = held.events.t[held.events.event == "lift-off-held"].iloc[0]
     assert stop.events.t.iloc[-1] == pytest.approx(t_held, abs=1e-9)
+
+
+def test_impact_with_a_raised_base_keeps_both_horizontal_momenta():
+    """theta -> 0 with h_b != 0: the frictionless plastic impact keeps the base's horizontal
+    momentum d' + h_b theta' and the mass's d' + u' + H theta', so u'+ = u'- + (H - h_b)
+    theta'-.  physics.md 4.4's u'+ = u'- + H theta'- added energy (0.920 -> 0.981 J/kg);
+    500 random states: no gain, both momenta kept."""
+    import numpy as np
+    from fastrock import FlexibleBody, Friction
+    from fastrock.kernels import flexible_friction as K
+    from fastrock.kernels import layout as L
+    from fastrock.kernels.hybrid import N_COUNTERS
+    from fastrock.models import flexible_friction_par
+    rng = np.random.default_rng(4)
+    for _ in range(500):
+        b = FlexibleBody(alpha=rng.uniform(0.1, 0.5), p=rng.uniform(1, 4), omega_n_over_p=rng.uniform(2, 30),
+                         zeta=0.05, base_mass_ratio=rng.uniform(0.05, 1.0), base_cm_height=rng.uniform(0.0, 0.5))
+        par = flexible_friction_par(b, Friction(0.5))
+        s = int(rng.choice([-1, 1]))
+        y = np.array([rng.normal() * 1e-3, rng.normal() * 0.1, 0.0, -s * rng.uniform(0.01, 2.0),
+                      0.0, rng.normal() * 0.1])
+        disc = np.zeros(L.N_DISC, np.int64)
+        disc[L.D_MODE] = L.MODE_ROCK
+        disc[L.D_PIVOT] = s
+        met = np.zeros(L.N_MET)
+        before = K.kinetic(y, s, par)
+        y0 = y.copy()
+        K.impact(1.0, y, par, disc, np.zeros(L.N_EXC), np.zeros(1), met, np.empty((8, L.N_LOG)),
+                 np.zeros(N_COUNTERS, np.int64))
+        H, hb = b.H, b.base_cm_height
+        assert y[5] + 0.0 == pytest.approx(y0[5] + hb * y0[3], abs=1e-12)
+        assert y[5] + y[1] == pytest.approx(y0[5] + y0[1] + H * y0[3], abs=1e-12)
+        y_after = y0.copy()
+        y_after[1], y_after[3], y_after[5] = y0[1] + (H - hb) * y0[3], 0.0, y0[5] + hb * y0[3]
+        assert K.kinetic(y_after, s, par) <= before * (1 + 1e-12)
