@@ -113,8 +113,8 @@ def _add_body_options(p):
     f.add_argument("--mu-s", type=float, help="static friction coefficient (default: no sliding)")
     f.add_argument("--mu-k", type=float, help="kinetic friction coefficient (default mu_s)")
     f.add_argument("--lift-off", default="stop", choices=("stop", "hold", "flight"),
-                   help="the normal force reaching 0: stop with outcome 'flight' (default); 'flight' (rigid "
-                        "block): fly and land, without --mu-s never slipping; 'hold' (flexible body): hold "
+                   help="the normal force reaching 0: stop with outcome 'flight' (default); 'flight': "
+                        "fly and land, without --mu-s never slipping; 'hold' (flexible body): hold "
                         "the pivot down, slipping without friction while N < 0")
 
 

@@ -22,10 +22,12 @@ class Friction:
     whose residual slip exceeds it has outcome "slide" (default 1 mm).
 
     ``lift_off``: what happens when the normal force N reaches 0.  "stop"
-    (default): the run ends with outcome "flight".  "flight" (RigidBlock):
-    the body leaves the ground and flies as a free body until it lands on a
-    corner or flat (plastic normal impact with Coulomb friction), in the
-    contact model (``fastrock.registry``: ``contact``); it reports
+    (default): the run ends with outcome "flight" (a rigid block with a
+    wall and friction always runs the contact model, which flies).
+    "flight": the body leaves the ground and flies as a free body until it
+    lands on a corner or flat (plastic normal impact with Coulomb friction),
+    in the contact model for a RigidBlock and in ``flexible_flight`` for a
+    FlexibleBody (column and base fly together); it reports
     ``flights``, ``time_flight`` and ``max_jump``.  With ``mu_s = inf`` it
     never slips but still flies.  "hold" (FlexibleBody): the pivot is held
     on the ground, as the classic rocking models implicitly do (they never
