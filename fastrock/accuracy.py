@@ -164,7 +164,8 @@ def _run_set(body, safe, over, grid, solver, t_after, repeats=3, effects=None, t
     with _threads(threads):
         for _ in range(repeats):
             t0, c0 = time.perf_counter(), time.process_time()
-            status, MET, _, done = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, progress=False)
+            status, MET, _, done = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, progress=False,
+                                             reraise_when_complete=True)
             if done < len(grid):
                 raise KeyboardInterrupt   # a partial grid would make a wrong error and time
             best = min(best, time.perf_counter() - t0)
@@ -218,7 +219,8 @@ def _run_set_foundation(body, fnd, safe, over, grid, solver, repeats=3, threads=
     with _threads(threads):
         for _ in range(repeats):
             t0, c0 = time.perf_counter(), time.process_time()
-            status, MET, _, done = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, progress=False)
+            status, MET, _, done = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, progress=False,
+                                             reraise_when_complete=True)
             if done < len(grid):
                 raise KeyboardInterrupt   # a partial grid would make a wrong error and time
             best = min(best, time.perf_counter() - t0)

@@ -69,11 +69,14 @@ def call_kernel(kernel, *args, opt):
 
 
 def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=True, label="runs",
-              model=None):
+              model=None, reraise_when_complete=False):
     """Run a sweep kernel over rows in chunks.
 
     Returns (status, MET, YF, n_done).  On KeyboardInterrupt the finished
-    chunks are returned (n_done < n) with a warning, never lost.  With
+    chunks are returned (n_done < n) with a warning, never lost.  A Ctrl-C
+    that lands after every run has finished returns the complete result,
+    or, with ``reraise_when_complete`` (callers that run many sweeps and
+    must stop at the next one), raises KeyboardInterrupt again.  With
     ``progress``, the first call of a model's kernel in this process
     (``model``: its registry name) is announced before it may compile.
     """
@@ -117,6 +120,8 @@ def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=Tr
             done = stop
             bar.update(stop - sl.start)
     except KeyboardInterrupt:
+        if done == n and reraise_when_complete:
+            raise
         warnings.warn(f"interrupted: returning the {done} of {n} runs that finished", stacklevel=3)
     finally:
         bar.close()
