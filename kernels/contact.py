@@ -551,6 +551,16 @@ def approach_gap(kw, y, par):
 
 
 @jit
+def closed_wall_force(t, y, par, disc, hdr, smp):
+    """Normal force of the closed wall contact (the base corner's ladder or
+    the top corner's) in the current contact mode; the phase ends at 0."""
+    acc = np.empty(3)
+    _ok, _N0, _F0, _N1, _F1, N2, _F2 = mode_solve(
+        t, y, par, disc[D_CS0], disc[D_CS1], disc[D_CS2], hdr, smp, acc)
+    return N2
+
+
+@jit
 def event(k, t, y, par, disc, hdr, smp):
     mode = disc[D_MODE]
     s = disc[D_PIVOT]
@@ -564,11 +574,7 @@ def event(k, t, y, par, disc, hdr, smp):
         if mode != MODE_ROCK and mode != MODE_SLIDE_ROCK:
             return np.inf, 0.0, True
         if disc[D_CS2] == CS_WALL_BASE:
-            acc = np.empty(3)
-            _ok, _N0, _F0, _N1, _F1, N2, _F2 = mode_solve(
-                t, y, par, disc[D_CS0], disc[D_CS1], disc[D_CS2], hdr, smp,
-                acc)
-            return N2, 0.0, True
+            return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
         if (1 if s > 0 else 0) == near_index(par):
             return np.inf, 0.0, True
         g, gd = approach_gap(K_NEAR, y, par)
@@ -634,11 +640,7 @@ def event(k, t, y, par, disc, hdr, smp):
             return np.inf, 0.0, True
         if disc[D_CS2] == CS_FREE:
             # top-corner ladder (top_ladder): the wall's force reaching 0
-            acc = np.empty(3)
-            _ok, _N0, _F0, _N1, _F1, N2, _F2 = mode_solve(
-                t, y, par, disc[D_CS0], disc[D_CS1], disc[D_CS2], hdr, smp,
-                acc)
-            return N2, 0.0, True
+            return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
         gap, vn, _vt = point_kin(2, y, par)
         if vn < 0.0:
             return gap, vn, True

@@ -55,7 +55,7 @@ from .excitation import excitation_end, ground_rates
 from .flexible import C_UPLIFT, kinetic, positions, track_u, uplift_margin
 from .flexible import after_step as flexible_after_step
 from .flexible import event as flexible_event
-from .flexible import init_state as flexible_init_state
+from .flexible import init_state, static_margin  # no static phase: u vibrates in every mode
 from .flexible import rhs as flexible_rhs
 from .flexible import transition as flexible_transition
 from .hybrid import (book_time, check_energy, integrate_hybrid, is_chatter,
@@ -242,11 +242,6 @@ def small_gap_block(t, y, par, disc, opt, met, log, cnt):
 
 
 @jit
-def static_margin(t, y, par, disc, hdr, smp):
-    return 1.0   # no static phase: u vibrates in every contact mode
-
-
-@jit
 def trapped_on_wall(y, par, disc):
     """Free motion (no excitation) can never bring the body back over
     alpha: it pivots on the near corner past alpha (so theta_w > alpha)
@@ -302,11 +297,6 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
         if mode == MODE_WALL_REST:
             return RUNNING
     return flexible_after_step(t, y, par, disc, hdr, smp, opt, met, at_end)
-
-
-@jit
-def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
-    flexible_init_state(t0, y, par, disc, hdr, smp, met, log, cnt)
 
 
 @jit
