@@ -253,6 +253,10 @@ def test_linear_sdof_matches_closed_form():
        ratio=st.floats(-0.95, 0.95, allow_subnormal=False),
        w0=st.floats(-1.0, 1.0, allow_subnormal=False))
 def test_two_spring_energy_never_grows(omega, zeta, ratio, w0):
+    from hypothesis import assume
+    # a normal ratio times alpha can still be subnormal (2.2e-308 * 0.2), which simulate refuses
+    # by contract (tests/test_hostile_input.py): such a release is no scene
+    assume(ratio * BODY.alpha == 0.0 or abs(ratio * BODY.alpha) >= np.finfo(float).tiny)
     fnd = TwoSpringFoundation.from_vibration(BODY, omega, zeta)
     r = simulate_foundation(BODY, fnd, theta0=ratio * BODY.alpha, dtheta0=w0, duration=3.0,
                             rtol=1e-10, allow_overturn=True)
