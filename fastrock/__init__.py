@@ -29,6 +29,7 @@ def _source_checkout_kernels():
 _source_checkout_kernels()
 
 from .bodies import FlexibleBody, RigidBlock, housner_restitution  # noqa: E402
+from .constants import G_STANDARD
 from .excitation import Pulse, SampledMotion
 from .solver import Solver
 from .simulate import SimulationResult, simulate
@@ -37,10 +38,20 @@ from .friction import Friction
 from .records import GroundMotion, read_record
 from .foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation, simulate_foundation
 from .wall import Wall
+from .freerocking import FreeRockingFit, fit_free_rocking, half_cycles
+from .rocking_spectrum import rocking_spectrum
+from .scene import Scene
+from .study import FragilityFit, Study, fit_fragility, plot_fragility, run_study
 
 __all__ = [
-    "RigidBlock", "FlexibleBody", "housner_restitution", "Pulse", "SampledMotion", "Solver",
-    "SimulationResult", "simulate", "overturning_spectrum", "Friction", "GroundMotion", "read_record",
-    "Wall",
+    # bodies, scenes and excitations
+    "RigidBlock", "FlexibleBody", "housner_restitution", "Wall", "Friction",
+    "TwoSpringFoundation", "SwitchingFoundation", "LinearVibration",
+    "Pulse", "SampledMotion", "GroundMotion", "read_record", "Scene", "G_STANDARD",
+    # running
+    "Solver", "simulate", "SimulationResult", "simulate_foundation",
+    # analyses and studies
+    "overturning_spectrum", "rocking_spectrum", "half_cycles", "fit_free_rocking", "FreeRockingFit",
+    "Study", "run_study", "fit_fragility", "FragilityFit", "plot_fragility",
 ]
 __version__ = "0.1.0"

@@ -4,6 +4,8 @@ import numbers
 
 import numpy as np
 
+from .constants import G_STANDARD
+
 #: Largest ground acceleration accepted anywhere [g]: the strongest recorded
 #: motions peak near 4-5 g; beyond 100 g a rigid block on the ground is no
 #: longer a meaningful model (and the integrator's step shrinks with 1/a).
@@ -130,7 +132,7 @@ def integer(name, value, lo=None, hi=None):
     return v
 
 
-def acceleration(name, value_si, g=9.80665, what=None):
+def acceleration(name, value_si, g=G_STANDARD, what=None):
     """Refuse a ground acceleration [m/s^2] above MAX_ACCELERATION_G."""
     if abs(value_si) > MAX_ACCELERATION_G * g:
         raise ValueError(f"{name}: {what or 'the ground acceleration'} = {abs(value_si) / g:.4g} g is above "

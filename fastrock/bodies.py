@@ -5,9 +5,8 @@ import math
 from dataclasses import dataclass, field
 
 from . import _validate as V
+from .constants import G_STANDARD
 from fastrock.kernels import layout as _L
-
-G_STANDARD = 9.80665
 
 
 def housner_restitution(alpha, mass_ratio=1.5):
@@ -33,7 +32,7 @@ class RigidBlock:
         Angular-velocity restitution per impact, in [0, 1].  Default:
         Housner's value for a rectangle, 1 - 1.5 sin^2(alpha).
     g : float
-        Gravity [m/s^2], default 9.80665.
+        Gravity [m/s^2], default standard gravity (``fastrock.G_STANDARD``).
     theta_over : float
         Rotation [rad] at which the block counts as overturned (default pi/2).
     b, h : float, optional
@@ -70,17 +69,31 @@ class RigidBlock:
                 V.positive(nm, getattr(self, nm))
 
     @classmethod
-    def rectangle(cls, b, h, e=None, g=G_STANDARD, theta_over=math.pi / 2):
-        """Rectangular block of half-width ``b`` and half-height ``h`` [m].
+    def rectangle(cls, b=None, h=None, e=None, g=G_STANDARD, theta_over=math.pi / 2, *, width=None,
+                  height=None):
+        """Rectangular block of half-width ``b`` and half-height ``h`` [m], or of full
+        dimensions ``width`` = 2b and ``height`` = 2h [m] by keyword.
 
         R = sqrt(b^2 + h^2), alpha = atan(b/h), p = sqrt(3 g / (4 R)).
+
+        >>> RigidBlock.rectangle(width=0.5, height=2.0) == RigidBlock.rectangle(0.25, 1.0)
+        True
         """
-        b = V.positive("b", b)
-        h = V.positive("h", h)
+        b = cls._half_size("b", b, "width", width)
+        h = cls._half_size("h", h, "height", height)
         g = V.positive("g", g)
         R = math.hypot(b, h)
         return cls(alpha=math.atan2(b, h), p=math.sqrt(3.0 * g / (4.0 * R)), e=e,
                    g=g, theta_over=theta_over, b=b, h=h)
+
+    @staticmethod
+    def _half_size(half_name, half, full_name, full):
+        if (half is None) == (full is None):
+            raise ValueError(f"give either {half_name} (half size) or {full_name} (full size) [m], "
+                             f"not {'both' if half is not None else 'neither'}")
+        if half is not None:
+            return V.positive(half_name, half)
+        return V.positive(full_name, full) / 2.0
 
     @classmethod
     def from_inertia(cls, R, alpha, I0, m, e=None, g=G_STANDARD, theta_over=math.pi / 2):

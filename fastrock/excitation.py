@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _validate as V
+from .constants import G_STANDARD
 from fastrock.kernels import layout as L
 
 PULSE_KINDS = {
@@ -22,7 +23,6 @@ PULSE_KINDS = {
 }
 AMPLITUDE_UNITS = ("g", "m/s2", "g_tan_alpha")
 FREQUENCY_UNITS = ("Hz", "rad/s", "omega_p/p")
-G_STANDARD = 9.80665
 ACCELERATION_UNITS = {"g": None, "m/s2": 1.0, "cm/s2": 0.01, "gal": 0.01, "mm/s2": 0.001}
 
 

@@ -42,6 +42,7 @@ import pandas as pd
 from . import _validate as V
 from . import excitation as X
 from .bodies import RigidBlock
+from .constants import G_STANDARD
 from .outcomes import outcome_of, status_of
 from .simulate import SimulationResult, _ground_at, events_frame, metrics_dict, run_inputs
 from .solver import DEFAULT_T_AFTER, make_solver
@@ -457,7 +458,6 @@ def foundation_half_cycles(result, definition="impact", **kw):
 
 # ------------------------------------------------------------------------- predictors
 PREDICTOR_MODELS = ("two-spring", "switching")
-G_PREDICTOR = 9.81
 
 
 def _predictor_body(params, body, mass, inertia_ratio, g):
@@ -526,7 +526,7 @@ def _release_history(body, foundation, mass, theta0, t_end, rtol, max_steps):
     return code, t, th, lift
 
 
-def make_predictor(model, body=None, mass=1.0, *, inertia_ratio=0.75, g=G_PREDICTOR,
+def make_predictor(model, body=None, mass=1.0, *, inertia_ratio=0.75, g=G_STANDARD,
                    rtol=1e-10, return_peaks=False, max_duration=600.0, max_steps=300_000):
     """A ``predictor(params, n)`` for :func:`fastrock.freerocking.fit_free_rocking`.
 

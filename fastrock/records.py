@@ -36,6 +36,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from .constants import G_STANDARD
+
 __all__ = [
     "G_STANDARD",
     "PGA_PLAUSIBLE_G",
@@ -46,9 +48,6 @@ __all__ = [
     "load_default_record",
     "read_record",
 ]
-
-#: Standard gravity [m/s²] used for every g <-> m/s² conversion.
-G_STANDARD = 9.80665
 
 #: Canonical unit names and their factor to m/s².
 UNITS: dict[str, float] = {

@@ -81,7 +81,8 @@ from . import _validate as V
 from . import models
 from .bodies import FlexibleBody, RigidBlock
 from .outcomes import outcome_of, status_of
-from .records import G_STANDARD, GroundMotion, load_default_record
+from .constants import G_STANDARD
+from .records import GroundMotion, load_default_record
 from .solver import DEFAULT_T_AFTER, Solver
 from .sweep import Progress, call_kernel
 # Reused from the rocking spectrum (private helpers, imported on purpose so

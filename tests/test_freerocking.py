@@ -48,7 +48,7 @@ from fastrock.freerocking import (
 
 YU_CSV = fr._DATA_DIR / "yu2019_halfcycles.csv"
 YU_ALPHA = math.radians(YU2019_BLOCK["alpha_deg"])
-G = 9.81
+G = 9.80665  # fastrock.constants.G_STANDARD, the default g of accelerometer()
 
 
 # ----------------------------------------------------------------------------------------
