@@ -418,10 +418,14 @@ class BatchResult:
             self.details[key].append(f"{kind}: {detail}")
 
 
-def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None, limit=None, status=False):
+def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None, limit=None, status=False,
+                explain=None):
     """Run two variants on ``cells`` and compare them row by row (with the tight re-run rule).
 
-    run_a / run_b: functions (tight: bool) -> dict key -> row (key of the main grid cell)."""
+    run_a / run_b: functions (tight: bool) -> dict key -> row (key of the main grid cell).
+    ``explain(key)``: for a pair that still differs at the tight rtol, (tag, detail) when an
+    independent physical check shows the two variants are not comparable on that cell (counted
+    under ``reported`` as ``<name>_<tag>``, not a failure), else None."""
     try:
         A, ta, ha = run_a(False)
         B, tb, hb = run_b(False)
@@ -471,6 +475,12 @@ def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None
         if k in At and k in Bt and _same(At[k], Bt[k], outcome_only, status) \
                 and not At[k]["status"].startswith("failed"):
             res.boundary[name] += 1
+            continue
+        why = explain(k) if explain is not None else None
+        if why:
+            # not comparable, for a physical reason checked independently (``explain``)
+            res.reported[f"{name}_{why[0]}"] += 1
+            res.details[k].append(f"{name}_{why[0]} ({what}): {why[1]}")
         elif name == "mu_inf" and P["body"].get("e") is not None:
             # README (friction): a given e that friction cannot hold is not applied, so mu -> inf
             # tends to the frictionless block only with Housner's e; kept apart
@@ -479,6 +489,100 @@ def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None
             tw = (f"; tight: {At[k]['outcome']} {float(At[k]['max_rotation_ratio']):.9g} vs {Bt[k]['outcome']} "
                   f"{float(Bt[k]['max_rotation_ratio']):.9g}" if k in At and k in Bt else "")
             res.tag(k, f"violated:{name}", what + tw)
+
+
+MU_INF = 1e6              # the "mu -> inf" friction of the mu_inf check
+
+
+def pivot_forces(body, theta, w, s, ag, G):
+    """Friction force F and normal force N per unit mass [m/s^2] that the pivot s of a rigid
+    block rocking without slip needs (arrays), from Newton-Euler of physics.md 4.3 with d'' = 0
+    (the frictionless kernel's motion); computed here in numpy, apart from the kernels."""
+    from fastrock.models import rigid_friction_par
+    from fastrock import Friction
+    from fastrock.kernels import layout as L
+    par = rigid_friction_par(body, Friction(1.0))
+    b, h, iG = par[L.Q_B], par[L.Q_H], par[L.Q_IG]
+    X = -s * b * np.cos(theta) + h * np.sin(theta)
+    Y = s * b * np.sin(theta) + h * np.cos(theta)
+    tdd = (G * X - ag * Y) / (iG + X * X + Y * Y)
+    return ag + Y * tdd - X * w * w, G - X * tdd - Y * w * w
+
+
+def first_cone_exit(body, run, rerun=None, mu=MU_INF):
+    """First time at which the bilateral pivot of a frictionless ``run`` (rigid kernel) needs a
+    force outside the cone |F| <= mu N (for mu = 1e6: N <~ 0, tension), the time of the row
+    before it, and the smallest N seen [m/s^2]; (inf, inf, N_min) if never.  The history rows are
+    scanned, and with ``rerun`` (t_eval -> history of the same run) also 128 points inside the
+    steps next to every row with N < 0.05 g, where a dip between two rows hides (grazing)."""
+    def scan(hh):
+        t = hh["t"].to_numpy()
+        s = hh["pivot"].to_numpy()
+        rock = s != 0
+        F, N = pivot_forces(body, hh["theta"].to_numpy(), hh["theta_dot"].to_numpy(), np.where(rock, s, 1),
+                            hh["a_g"].to_numpy(), body.g + hh["a_v"].to_numpy())
+        return t, rock, F, N
+
+    t, rock, F, N = scan(run.history)
+    if rerun is not None:
+        low = np.flatnonzero(rock & (N < 0.05 * body.g))
+        if low.size:
+            te = np.unique(np.concatenate([np.linspace(t[max(i - 1, 0)], t[min(i + 1, t.size - 1)], 129)
+                                           for i in low]))
+            td, rd, Fd, Nd = scan(rerun(te))
+            keep = rd & (td > t[0])
+            order = np.argsort(np.concatenate([t, td[keep]]), kind="stable")
+            t = np.concatenate([t, td[keep]])[order]
+            rock = np.concatenate([rock, rd[keep]])[order]
+            F = np.concatenate([F, Fd[keep]])[order]
+            N = np.concatenate([N, Nd[keep]])[order]
+    n_min = float(np.min(np.where(rock, N, np.inf)))
+    bad = rock & (np.abs(F) > mu * N)
+    if not bad.any():
+        return np.inf, np.inf, n_min
+    i = int(np.argmax(bad))
+    return float(t[i]), float(t[max(i - 1, 0)]), n_min
+
+
+def mu_inf_tension(P, key, limit=None):
+    """Why ``Friction(1e6)`` and the frictionless block (friction family) may differ on cell
+    ``key``: the frictionless block holds its pivot bilaterally, and a unilateral Coulomb contact
+    follows it only while the pivot force stays in the cone |F| <= mu N.  Where the frictionless
+    pivot needs |F| > 1e6 N (tension, N < 0, in every case seen), the friction block must part
+    from it there: it slips (the free corner pressed, A > 0: N -> 0 and a finite F as mu -> inf)
+    or lifts off (A < 0; lift_off "stop" ends the run "flight").  Checked at the tight rtol,
+    independently of the friction kernel: the first row of the frictionless history outside the
+    cone (numpy forces, dense near N ~ 0), and the friction run's first slip or flight lying
+    between that row and the one before it.  Returns ("tension", detail) then, else None."""
+    from fastrock import Friction, Pulse, simulate
+    kw = build_scene(P, 1.0, "tight")
+    body = kw["body"]
+    a, f, s = key
+    pulse = Pulse(a, f, s, kw["pulse"], amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+    run_kw = {"solver": kw["solver"], "t_after": kw["t_after"]}
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with _Alarm(limit):
+                r0 = simulate(body, pulse, **run_kw)
+                t_bad, t_ok, n_min = first_cone_exit(
+                    body, r0, rerun=lambda te: simulate(body, pulse, t_eval=te, **run_kw).history)
+                r1 = simulate(body, pulse, friction=Friction(MU_INF, slide_tolerance=1e-6), **run_kw)
+    except _Hang:
+        return None
+    if r0.status.startswith("failed") or r1.status.startswith("failed") or not np.isfinite(t_bad):
+        return None
+    ev = r1.events
+    part = ev[ev["event"].isin(["slip", "flight"])]
+    if not len(part):
+        return None
+    tp = float(part["t"].iloc[0])
+    tol = 1e-9 * max(1.0, abs(t_bad))
+    if not t_ok - tol <= tp <= t_bad + tol:
+        return None
+    return "tension", (f"the frictionless pivot needs |F| > {MU_INF:g} N from t = {t_bad:.9g} s (N down to "
+                       f"{n_min / body.g:.3g} g); Friction({MU_INF:g}) parts there by a "
+                       f"{part['event'].iloc[0]} at t = {tp:.9g} s")
 
 
 def _rows(df, flip_sign=False):
@@ -659,7 +763,7 @@ def _checks(res, P, main, limit):
             return int(a.get("lift_offs", 0) or 0) > 0
         _pair_check(res, "mu_inf", P, cells, spec_rows("mu_inf"), spec_rows("no_friction"),
                     outcome_only=True, skip=not_comparable if fam == "flexible_friction" else None,
-                    limit=limit)
+                    limit=limit, explain=(lambda k: mu_inf_tension(P, k, limit)) if fam == "friction" else None)
     if fam == "wall":
         _pair_check(res, "tall_wall", P, cells, spec_rows("tall_wall"), spec_rows("no_wall"), limit=limit)
     if fam == "flexible_wall":     # README: the flexible kernel step for step

@@ -313,6 +313,14 @@ MU_INF_CELLS = [
      3.240755767032052, 7.104554243489959, 6.22404523893308e-05, "slip"),
     ("friction:2026:50", RigidBlock.rectangle(6.846812858973483, 7.716918828647167), "one-sine",
      4.654731080495459, 15.143646652268837, 3.403325878718769e-10, "slip"),
+    # fuzz baseline of commit 8c52239 (seed 2026: 392 violated:mu_inf[:given-e] cells, every one
+    # parting at the frictionless pivot's first tension, bench/README.md): a flight where the
+    # frictionless block overturns in mode 2 (b/h 1.15, N down to -66 g) ...
+    ("friction:2026:24", RigidBlock.rectangle(0.056688176216994644, 0.04940034612613083), "one-cosine",
+     29.80682500088476, 0.5110578100030113, 1.7198347589235208e-07, "flight"),
+    # ... and a slip (outcome "slide") where it is safe, Housner's e (b/h 0.59)
+    ("friction:2026:240", RigidBlock.rectangle(0.41971992603380676, 0.7159073328427731), "one-cosine",
+     8.016078855841595, 12.485350882557269, 1.4277487697718648e-08, "slip"),
 ]
 
 
@@ -352,6 +360,51 @@ def test_mu_1e6_follows_rigid_until_the_pivot_needs_tension(cell):
     else:
         assert A > 0 and slip_den(body, X, Y, sig1, 1e6) > 0 and part["pivot"] == sig1
         assert r1.metrics["max_slide"] > 1e-3 * body.h     # a finite slip, as mu -> inf
+
+
+# slip cells with their measured mu -> inf slip [m] (mu = 1e8, rtol 1e-10): friction:2026:240
+# above, and friction:2026:247 (b/h 0.56), a given e, tagged violated:mu_inf:given-e although e
+# plays no part (it parts at the first tension, before any impact with a slip velocity)
+MU_LIMIT_CELLS = [
+    (MU_INF_CELLS[-1], 0.0330591641),
+    (("friction:2026:247", RigidBlock.rectangle(1.54423140140743, 2.7481880314506437, e=0.4444965649365037),
+      "one-cosine", 5.391010374969534, 45.20700548424042, 2.4257385923665217e-07, "slip"), 6.680314e-4),
+]
+
+
+@pytest.mark.parametrize("cell,limit", MU_LIMIT_CELLS, ids=[c[0][0] for c in MU_LIMIT_CELLS])
+def test_mu_to_infinity_is_a_finite_slip_not_the_frictionless_block(cell, limit):
+    """Where the frictionless pivot needs tension with the free corner pressed (A > 0), the
+    Coulomb block's limit mu -> inf is a slip with N -> 0 and a finite friction force F ->
+    -A i_G / (X Y) (kernels/friction.py: N_slip = A i_G / D, D ~ mu sigma X Y), not the
+    frictionless block: over mu = 1e4, 1e6, 1e8 the slip converges like 1/mu to a limit well
+    above the slide tolerance, at the same number of impacts and stick-slip transitions, and
+    the outcome stays "slide" while the frictionless block is "safe".  So the fuzz's
+    violated:mu_inf "slide where the frictionless block is safe" is the physical answer, and the
+    frictionless block (a bilateral pivot) is the model that fails there."""
+    name, body, kind, amp, f, _rtol, _mode = cell
+    pulse = fuzz_pulse(amp, f, 1, kind)
+    r0 = fr.simulate(body, pulse, rtol=1e-10)
+    assert r0.outcome == "safe"
+    t_bad, t_ok, n_min = pivot_tension_time(body, r0)
+    assert n_min < -0.1 * G0
+    slips, counts = [], set()
+    for mu in (1e4, 1e6, 1e8):
+        r = fr.simulate(body, pulse, friction=Friction(mu, slide_tolerance=1e-6), rtol=1e-10)
+        H.definite(r, 200_000, STATE)
+        assert r.outcome == "slide" and r.status == "safe:rest", (mu, r.status)
+        if mu == 1e6:
+            # the first slip comes where the frictionless pivot leaves the cone
+            ev = r.events
+            t_slip = ev[ev["event"] == "slip"]["t"].iloc[0]
+            assert t_ok - 1e-9 <= t_slip <= t_bad + 1e-9 and not (ev["event"] == "flight").any()
+        slips.append(r.metrics["max_slide"])
+        counts.add((r.metrics["impacts"], r.metrics["stick_slip"]))
+    assert len(counts) == 1
+    d1, d2 = abs(slips[1] - slips[0]), abs(slips[2] - slips[1])
+    assert d2 < 0.05 * d1, slips                    # ~ 1/mu convergence (measured ratio ~ 0.01)
+    assert slips[2] == pytest.approx(limit, rel=1e-5)
+    assert limit > 100 * 1e-6
 
 
 def test_flight_rotation_counts_and_scales():

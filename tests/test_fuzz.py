@@ -16,6 +16,8 @@ from pathlib import Path
 
 import pytest
 
+import fastrock as fr
+
 _FUZZ_PATH = Path(__file__).resolve().parent.parent / "bench" / "fuzz.py"
 _spec = importlib.util.spec_from_file_location("fastrock_bench_fuzz", _FUZZ_PATH)
 fuzz = importlib.util.module_from_spec(_spec)
@@ -34,8 +36,6 @@ SAMPLE = {"rigid": 512, "wall": 512, "friction": 512, "flexible": 128, "flexible
 KNOWN = {
     ("wall", "invariants"): "issue #14: violated:energy:fall, 1 of 512 cases (energy rises by more than "
                             "1e-6 + 100 rtol between two history rows of an overturning fall)",
-    ("friction", "invariants"): "issue #14: violated:mu_inf, 32 of 512 cases (Friction(1e6) slides or "
-                                "fails where the frictionless block does not)",
     # contact, commit cfdb6a0 (replayed): walls at small gaps end failed:transition-loop / face-contact:
     # contact:14:7 15 cells (gap 3.9e-9 m, Friction(inf, lift_off="flight"), e = 0.8, one-sine),
     # contact:14:2 3 cells (gap 9.4e-4 * 2h, Friction(0.507, lift_off="flight"), one-cosine, from
@@ -97,3 +97,33 @@ def test_energy_of_free_rocking_is_conserved_between_impacts():
                                   run.history["theta"].to_numpy(), body.alpha)
     assert run.metrics["impacts"] >= 2
     assert up < 1e-9 and fall == 0.0
+
+
+def test_mu_inf_difference_explained_only_by_the_frictionless_pivot_tension():
+    """The friction family's mu_inf check counts a difference between Friction(1e6) and the
+    frictionless block as not comparable (reported ``mu_inf_tension``) only when its own numpy
+    forces show the frictionless pivot leaving the cone |F| <= 1e6 N (tension) and the friction
+    run parting there.  friction:2026:24 (b/h 1.15, one-cosine, a_p/(g tan alpha) = 29.8): at
+    omega_p/p = 0.511 the frictionless block overturns (mode 2) with its pivot pulled down to
+    N = -66 g, and Friction(1e6) lifts off at the first tension (t = 0.017506 s, lift_off "stop":
+    outcome "flight").  Nothing explains a difference where the frictionless pivot stays
+    compressed: friction:2026:247 (b/h 0.56, e = 0.444) at a_p/(g tan alpha) = 3.10 rocks with
+    25 impacts and N >= 0.25 g."""
+    P = fuzz.draw_batch("friction", 2026, 24)
+    a = 29.80682500088476
+    why = fuzz.mu_inf_tension(P, (a, 0.5110578100030113, 1))
+    assert why is not None and why[0] == "tension" and "flight at t = 0.01750" in why[1], why
+    assert fuzz.mu_inf_tension(P, (a, 0.5110578100030113, -1))[0] == "tension"     # mirror
+    P = fuzz.draw_batch("friction", 2026, 247)
+    key = (3.103014661596896, 12.056617243397874, 1)
+    kw = fuzz.build_scene(P, 1.0, "tight")
+    pulse = fuzz_pulse_of(P, key)
+    r0 = fr.simulate(kw["body"], pulse, solver=kw["solver"], t_after=kw["t_after"])
+    t_bad, _t_ok, n_min = fuzz.first_cone_exit(kw["body"], r0)
+    assert r0.metrics["impacts"] > 10 and t_bad == float("inf") and n_min > 0.2 * kw["body"].g
+    assert fuzz.mu_inf_tension(P, key) is None
+
+
+def fuzz_pulse_of(P, key):
+    a, f, s = key
+    return fr.Pulse(a, f, s, P["pulse"], amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
