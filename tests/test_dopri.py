@@ -16,6 +16,9 @@ from scipy.integrate import RK45, OdeSolution
 import fastrock as fr
 from fastrock.kernels import dopri as D
 
+# fast, and every test here runs the kernel helpers: CI runs them again with NUMBA_DISABLE_JIT=1
+pytestmark = pytest.mark.nojit
+
 EPS = np.finfo(float).eps
 
 A = np.array(D.A)                      # 6 x 5 (row 0 is zero)

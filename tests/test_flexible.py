@@ -261,6 +261,7 @@ SDOF_CASES = [  # (omega_n/p, zeta, omega_p/p)
 ]
 
 
+@pytest.mark.nojit
 @pytest.mark.parametrize("wr,zeta,fp", SDOF_CASES)
 def test_sdof_closed_form_is_right(wr, zeta, fp):
     """The oracle itself against solve_ivp (DOP853, rtol 1e-12)."""
@@ -307,6 +308,7 @@ def uplift_amplitude_bound(b, fp, exact=False):
     return g * B / max(peak, after)
 
 
+@pytest.mark.nojit
 @pytest.mark.parametrize("rtol", [1e-8, 1e-10])
 @pytest.mark.parametrize("wr,zeta,fp", SDOF_CASES)
 def test_theta_zero_reproduces_sdof(wr, zeta, fp, rtol):
@@ -421,6 +423,7 @@ def random_state(rng, b):
                      rng.uniform(-1.2, 1.2) * b.alpha, rng.uniform(-2, 2) * b.p * b.alpha])
 
 
+@pytest.mark.nojit
 def test_kernel_accelerations_match_lagrangian():
     """u'', theta'' of the kernel = M^-1 f of the Lagrangian at 200 random states (both pivots,
     random bodies, constant a_g and a_v); full contact = the SDOF of 3.2.  rtol 1e-10."""
@@ -454,6 +457,7 @@ def test_kernel_accelerations_match_lagrangian():
     print(f"max relative residual kernel vs Lagrangian: {worst:.1e}")
 
 
+@pytest.mark.nojit
 def test_kernel_kinetic_energy_is_the_lagrangian_mass_matrix():
     """kernels.flexible.kinetic (T/m) = q'^T M q' / (2m): checks M entry by entry."""
     from fastrock.kernels import flexible as FK
@@ -469,6 +473,7 @@ def test_kernel_kinetic_energy_is_the_lagrangian_mass_matrix():
         assert FK.kinetic(y, 1, False, par) == pytest.approx(0.5 * y[1] ** 2, rel=1e-15)
 
 
+@pytest.mark.nojit
 def test_uplift_margin_is_the_signed_test_of_3_3():
     """uplift_margin = G (B - s u) - s H (w^2 u + 2 z w u') per unit mass (3.3, signed), its
     time derivative along the full-contact motion, and its sign is exactly that of
@@ -558,6 +563,7 @@ def test_full_contact_map_never_gains_energy(wr, zeta, k, xu, xv, xt, xw):
     assert met[L.M_ENERGY_GAINS] == 0
 
 
+@pytest.mark.nojit
 def test_pivot_switch_map_formula_and_energy_gain_is_counted():
     """I1 (physics.md 3.5): u' continuous, theta'+ = [H^2 + u^2 - B^2 + I_m/m] /
     [H^2 + (u + sB)^2 + I_m/m] theta'-, and a state with u' theta' large and of opposite sign
@@ -624,6 +630,7 @@ def test_soft_body_no_spurious_uplift(fp):
     assert r2.metrics["time_uplift"] > 0
 
 
+@pytest.mark.nojit
 def test_soft_body_uplifts_below_rigid_threshold():
     """The point of the care above: near resonance (w_p/p = 2 = w_n/p) the flexible threshold
     is well below g tan(alpha) (measured a*/(g tan a) = 0.31), so a 'below uplift' pulse for the

@@ -65,6 +65,7 @@ def test_quarter_period_check_values():
     assert quarter_period_linear(ALPHA, P, THETA0) == pytest.approx(0.7833996185, abs=1e-10)
 
 
+@pytest.mark.nojit
 @pytest.mark.parametrize("rtol", [1e-8, 1e-10, 1e-12])
 def test_quarter_period_exact_from_first_impact(rtol):
     body = fr.RigidBlock(alpha=ALPHA, p=P)
@@ -75,6 +76,7 @@ def test_quarter_period_exact_from_first_impact(rtol):
     assert abs(t1 - ref) <= 10 * rtol * ref, (t1, ref)
 
 
+@pytest.mark.nojit
 @pytest.mark.parametrize("alpha", [0.01, 0.05])
 @pytest.mark.parametrize("ratio", [0.3, 0.6, 0.9])
 def test_quarter_period_tends_to_linearised(alpha, ratio):
@@ -99,6 +101,7 @@ def test_amplitude_after_one_impact_check_value():
     assert amplitude_after_impact(ALPHA, body.e, THETA0) == pytest.approx(0.1115636539, abs=1e-10)
 
 
+@pytest.mark.nojit
 @pytest.mark.parametrize("alpha,theta0,e", [(ALPHA, THETA0, None), (0.1, 0.09, 0.7), (0.4, 0.1, 1.0)])
 def test_amplitude_after_one_impact(alpha, theta0, e):
     body = fr.RigidBlock(alpha=alpha, p=P, e=e)
@@ -167,6 +170,7 @@ def test_housner_restitution_from_inertia(R, alpha, k):
         assert body.p == pytest.approx(rect.p, rel=1e-13)
 
 
+@pytest.mark.nojit
 @pytest.mark.parametrize("e", [None, 0.6, 0.95])
 def test_energy_ratio_per_impact_is_e_squared(e):
     """At theta = 0 the energy is purely kinetic, theta'^2/(2 p^2) (units of M g R); per impact it

@@ -110,6 +110,7 @@ def test_limit_angle_branches_meet_and_edge_cases():
     assert fr.Wall(gap=0.1).limit_angle(body) == pytest.approx(fr.Wall(gap=0.1).limit_angle(BLOCK), rel=1e-12)
 
 
+@pytest.mark.nojit
 @pytest.mark.parametrize("wall", [fr.Wall(gap=0.1), fr.Wall(gap=0.1, height=1.0, side=1)])
 def test_block_meets_the_wall_at_the_limit_angle(wall):
     tw = wall.limit_angle(BLOCK)
@@ -126,6 +127,7 @@ def test_block_meets_the_wall_at_the_limit_angle(wall):
 # ----------------------------------------------------------------------------------------
 # impact maps and energy
 # ----------------------------------------------------------------------------------------
+@pytest.mark.nojit
 @pytest.mark.parametrize("side", [-1, 1])
 def test_elastic_wall_conserves_energy_across_a_wall_impact(side):
     wall = fr.Wall(gap=0.2, side=side)                       # e_w = 1
@@ -145,6 +147,7 @@ def test_elastic_wall_conserves_energy_across_a_wall_impact(side):
     assert r.metrics["wall_impacts"] >= 1 and r.metrics["ground_impacts"] >= 1
 
 
+@pytest.mark.nojit
 @pytest.mark.parametrize("ew", [0.0, 0.3, 0.8])
 def test_inelastic_wall_removes_kinetic_energy_only(ew):
     wall = fr.Wall(gap=0.2, restitution=ew)
@@ -159,6 +162,7 @@ def test_inelastic_wall_removes_kinetic_energy_only(ew):
     assert e_after - pe == pytest.approx(ew ** 2 * (e_before - pe), rel=1e-12)
 
 
+@pytest.mark.nojit
 def test_ground_impacts_keep_housner_map():
     wall = fr.Wall(gap=0.1)
     r = fr.simulate(BLOCK, pulse(0.3, 1.0), wall=wall, duration=8.0)
@@ -211,6 +215,7 @@ def test_unreachable_wall_spectrum_matches_two_sided():
 # ----------------------------------------------------------------------------------------
 # d = 0: Hogan's one-sided rocking
 # ----------------------------------------------------------------------------------------
+@pytest.mark.nojit
 @pytest.mark.parametrize("side, r", [(-1, 0.9), (1, 0.7), (-1, 1.0)])
 def test_hogan_map(side, r):
     wall = fr.Wall(gap=0.0, side=side, restitution=r)
@@ -234,6 +239,7 @@ def test_hogan_map(side, r):
     assert res.metrics["ground_impacts"] == res.metrics["wall_impacts"] == len(ev)
 
 
+@pytest.mark.nojit
 def test_hogan_uplift_only_away_from_the_wall():
     wall = fr.Wall(gap=0.0)                              # side -1: a positive pulse presses the block on it
     toward = fr.simulate(BLOCK, pulse(3.0, 1.0, kind="half-sine"), wall=wall)
@@ -359,6 +365,7 @@ def test_mirror_symmetry_of_spectra():
 # ----------------------------------------------------------------------------------------
 # chatter against the wall, resting on it, release
 # ----------------------------------------------------------------------------------------
+@pytest.mark.nojit
 @pytest.mark.parametrize("ew", [0.0, 0.5, 0.8])
 def test_chatter_settles_on_the_wall_and_releases_at_the_pulse_end(ew):
     wall = fr.Wall(gap=0.05, restitution=ew)
@@ -391,6 +398,7 @@ def test_chatter_settles_on_the_wall_and_releases_at_the_pulse_end(ew):
         assert n_wall <= 3 + math.log(1e-9 / v1) / math.log(ew)
 
 
+@pytest.mark.nojit
 def test_release_when_the_moments_stop_pressing():
     """Under a slow half-sine the block rests on the wall until
     w theta''(w theta_w, 0) = 0, i.e. a_g = -w g tan(alpha - theta_w) (physics.md 2)."""
@@ -406,6 +414,7 @@ def test_release_when_the_moments_stop_pressing():
         assert r.outcome == "safe"
 
 
+@pytest.mark.nojit
 def test_no_rest_on_the_wall_without_pressing():
     """theta_w < alpha and no excitation: the block cannot stay on the wall."""
     wall = fr.Wall(gap=0.1, restitution=0.0)
@@ -423,6 +432,7 @@ def test_no_rest_on_the_wall_without_pressing():
 LEAN_WALL = 1.2                                  # theta_w = 0.242 > alpha = 0.197
 
 
+@pytest.mark.nojit
 @pytest.mark.parametrize("ew", [0.0, 0.5, 1.0])
 @pytest.mark.parametrize("early_exit", [False, True])
 def test_leaning(ew, early_exit):
