@@ -404,13 +404,16 @@ def add_subcommand(sub):
     p.add_argument("--models", default=",".join(FAMILIES),
                    help=f"comma-separated model families: {', '.join(FAMILIES)} (default: all)")
     p.add_argument("--excitations", default="pulse,record",
-                   help="pulse and/or record (the foundation family always runs free releases)")
-    p.add_argument("--quick", action="store_true", help="fewer settings (rtol 1e-3..1e-10, dt 1e-2..1e-4)")
-    p.add_argument("--rtols", default=None, help="comma-separated rtol values (overrides --quick)")
-    p.add_argument("--dts", default=None, help="comma-separated fixed steps [s] (overrides --quick)")
+                   help="pulse and/or record (the foundation family always runs free releases; "
+                        "default pulse,record)")
+    p.add_argument("--quick", action="store_true", help="fewer settings (rtol 1e-3..1e-10, dt 1e-2..1e-4; default: off)")
+    p.add_argument("--rtols", default=None, help="comma-separated rtol values [-] (overrides --quick; default 1e-3..1e-12)")
+    p.add_argument("--dts", default=None, help="comma-separated fixed integration steps [s] (overrides --quick; default "
+                        "1e-2..1e-5)")
     p.add_argument("--grid", type=int, default=None,
-                   help="use only this many runs of each spectrum grid (evenly spaced; quick checks)")
-    p.add_argument("--t-after", type=float, default=5.0, help="seconds simulated after the excitation (5)")
+                   help="use only this many runs of each spectrum grid (evenly spaced; quick checks; "
+                        "default: the whole grid)")
+    p.add_argument("--t-after", type=float, default=5.0, help="time simulated after the excitation [s] (default 5)")
     p.add_argument("--measures", default=None,
                    help="comma-separated error columns to plot, one row each (default: err_max_rotation, "
                         "plus err_residual_slide with friction, err_half_cycles with the foundation)")
@@ -418,8 +421,9 @@ def add_subcommand(sub):
                    help="x axis: wall time per run (default) or CPU time per run (steadier on a busy machine)")
     p.add_argument("--threads", type=int, default=None,
                    help="Numba threads for the timed sweeps (default: all; 1 with --clock cpu on a shared machine)")
-    p.add_argument("--csv", default="accuracy.csv")
-    p.add_argument("--png", default="accuracy.png")
+    from .cli import add_output_options
+    add_output_options(p, png="accuracy.png", csv="accuracy.csv", figure="the work-precision figure",
+                       table="the table of settings")
     p.set_defaults(func=_cmd)
 
 
@@ -456,8 +460,8 @@ def _cmd(args):
         raise ValueError(f"--measures: unknown {', '.join(bad)} (choose from {', '.join(MEASURE_LABELS)})")
     df = work_precision(models, excitations, rtols, dts, t_after=args.t_after, grid=args.grid,
                         threads=args.threads)
-    df.to_csv(args.csv, index=False)
-    written = [args.csv]
+    from .cli import write_table, wrote
+    written = write_table(df, args)
     if len(df):
         fig = plot_work_precision(df, measures, clock=args.clock)
         fig.savefig(args.png, dpi=130)
@@ -465,5 +469,5 @@ def _cmd(args):
     if df.attrs.get("interrupted"):
         from .cli import interrupted_exit
         return interrupted_exit(len(df), df.attrs["settings_total"], "settings", written)
-    print(f"wrote {args.csv} and {args.png}")
+    wrote(written)
     return 0

@@ -27,6 +27,47 @@ def interrupted_exit(done, total, what="runs", written=()):
     return EXIT_INTERRUPTED
 
 
+def add_output_options(p, *, png=None, csv=None, figure="the figure", table="the table", parquet=True):
+    """The same output options on every command that writes: ``--png`` (a figure), ``--csv``
+    and ``--parquet`` (its table).  ``png``/``csv`` are the defaults (None: not written)."""
+    p.add_argument("--png", default=png, metavar="FILE",
+                   help=f"write {figure} as PNG (default: {png or 'not written'})")
+    if csv is not False:
+        p.add_argument("--csv", default=csv, metavar="FILE",
+                       help=f"write {table} as CSV (default: {csv or 'not written'})")
+    if parquet:
+        p.add_argument("--parquet", default=None, metavar="FILE",
+                       help=f"write {table} as Parquet, needs pyarrow (default: not written)")
+
+
+def write_table(df, args, csv=None, parquet=None):
+    """Write ``df`` to the ``--csv`` and ``--parquet`` files of ``args`` (or the given paths);
+    returns the paths written."""
+    csv = csv if csv is not None else getattr(args, "csv", None)
+    parquet = parquet if parquet is not None else getattr(args, "parquet", None)
+    out = []
+    if csv:
+        df.to_csv(csv, index=False)
+        out.append(str(csv))
+    if parquet:
+        try:
+            import pyarrow  # noqa: F401
+        except ImportError:
+            raise ValueError("--parquet needs pyarrow (pip install pyarrow)") from None
+        flat = df.copy(deep=False)
+        flat.attrs = {}          # attrs may hold objects Parquet metadata cannot store
+        flat.to_parquet(parquet, index=False)
+        out.append(str(parquet))
+    return out
+
+
+def wrote(paths):
+    """One line naming the files written (nothing with --quiet: stdout is closed then)."""
+    paths = [str(f) for f in paths if f]
+    if paths:
+        print(f"wrote {' and '.join(paths)}")
+
+
 def grid_option(prefix, lo, hi, n, positive=True, n_option=None):
     """``np.linspace(lo, hi, n)`` from the options ``{prefix}-min``, ``{prefix}-max`` and
     ``n_option`` (default ``--n-{prefix}``), each checked and named in the error."""
@@ -86,32 +127,34 @@ def _add_body_options(p):
     g = p.add_argument_group("body (rigid block)")
     g.add_argument("--alpha", type=float, default=0.25, help="slenderness angle alpha [rad] (default 0.25)")
     g.add_argument("--p", type=float, default=2.0, help="frequency parameter p [rad/s] (default 2.0)")
-    g.add_argument("--b", type=float, help="half-width [m] (with --h: rectangle, overrides --alpha/--p)")
-    g.add_argument("--h", type=float, help="half-height [m]")
-    g.add_argument("--e", type=float, help="restitution (default: Housner, 1 - 1.5 sin^2 alpha)")
+    g.add_argument("--b", type=float, help="half-width [m] (with --h: rectangle, overrides --alpha/--p; default: use --alpha/--p)")
+    g.add_argument("--h", type=float, help="half-height [m] (with --b; default: use --alpha/--p)")
+    g.add_argument("--e", type=float, help="ground impact restitution e [-] (default: Housner, 1 - 1.5 sin^2 alpha)")
     fb = p.add_argument_group("flexible body (elastic column on a rocking base, physics.md 3)")
     fb.add_argument("--omega-n-over-p", type=float,
-                    help="column frequency ratio omega_n/p: a flexible body instead of a rigid block")
-    fb.add_argument("--zeta", type=float, default=0.0, help="column damping ratio (default 0)")
+                    help="column frequency ratio omega_n/p [-]: a flexible body instead of a rigid block "
+                         "(default: a rigid block)")
+    fb.add_argument("--zeta", type=float, default=0.0, help="column damping ratio zeta [-] (default 0)")
     fb.add_argument("--base-mass-ratio", type=float,
-                    help="rigid base mass m_b/m (default 0, or 0.1 with --mu-s)")
+                    help="rigid base mass m_b/m [-] (default 0, or 0.1 with --mu-s)")
     w = p.add_argument_group("rear wall (one-sided rocking)")
     w.add_argument("--wall-gap", type=float, help="clear gap d [m] to a rear wall (default: no wall)")
     w.add_argument("--wall-side", type=int, default=-1, choices=(-1, 1),
                    help="-1: wall on the negative-theta side, so a positive pulse throws the block "
                         "toward it (default -1)")
     w.add_argument("--wall-height", type=float, help="wall height [m] (default: taller than the block)")
-    w.add_argument("--wall-restitution", type=float, default=1.0, help="wall restitution e_w (default 1)")
+    w.add_argument("--wall-restitution", type=float, default=1.0, help="wall restitution e_w [-] (default 1)")
     fd = p.add_argument_group("flexible foundation (rigid block with --b/--h)")
     fd.add_argument("--foundation", choices=("two-spring", "switching", "linear"),
                     help="stand the block on a flexible foundation (default: rigid ground)")
     fd.add_argument("--foundation-omega", type=float,
-                    help="its small-amplitude rocking vibration in full contact [rad/s]")
-    fd.add_argument("--foundation-zeta", type=float, default=0.0, help="its damping ratio (default 0)")
+                    help="its small-amplitude rocking vibration in full contact [rad/s] (no default: "
+                         "required with --foundation)")
+    fd.add_argument("--foundation-zeta", type=float, default=0.0, help="its damping ratio [-] (default 0)")
     fd.add_argument("--mass", type=float, default=1.0, help="block mass [kg] (default 1)")
     f = p.add_argument_group("friction (sliding)")
-    f.add_argument("--mu-s", type=float, help="static friction coefficient (default: no sliding)")
-    f.add_argument("--mu-k", type=float, help="kinetic friction coefficient (default mu_s)")
+    f.add_argument("--mu-s", type=float, help="static friction coefficient mu_s [-] (default: no sliding)")
+    f.add_argument("--mu-k", type=float, help="kinetic friction coefficient mu_k [-] (default mu_s)")
     f.add_argument("--lift-off", default="stop", choices=("stop", "hold", "flight"),
                    help="the normal force reaching 0: stop with outcome 'flight' (default); 'flight': "
                         "fly and land, without --mu-s never slipping; 'hold' (flexible body): hold "
@@ -120,9 +163,10 @@ def _add_body_options(p):
 
 def _add_solver_options(p):
     g = p.add_argument_group("integrator")
-    g.add_argument("--rtol", type=float, help="relative tolerance of adaptive RK45 (default 1e-8)")
-    g.add_argument("--atol", type=float, help="absolute tolerance (default rtol*1e-2)")
-    g.add_argument("--dt", type=float, help="fixed step [s] instead of adaptive RK45")
+    g.add_argument("--rtol", type=float, help="relative tolerance of adaptive RK45 [-] (default 1e-8)")
+    g.add_argument("--atol", type=float, help="absolute tolerance [rad, rad/s] (default rtol*1e-2)")
+    g.add_argument("--dt", type=float, help="fixed integration step [s] instead of adaptive RK45 "
+                                            "(default: adaptive)")
 
 
 def cmd_spectrum(args):
@@ -142,7 +186,7 @@ def cmd_spectrum(args):
                               rtol=args.rtol, atol=args.atol, dt=args.dt, progress=not args.quiet)
     el = time.perf_counter() - t0
     n_total = len(signs) * amps.size * freqs.size
-    df.to_csv(args.csv, index=False)
+    tables = write_table(df, args)
     plt = __import__("matplotlib.pyplot").pyplot
     fig, axes = plt.subplots(1, len(signs), figsize=(6.2 * len(signs), 4.8), squeeze=False,
                              constrained_layout=True)
@@ -157,8 +201,8 @@ def cmd_spectrum(args):
     counts = df["outcome"].value_counts().to_dict()
     print(f"{len(df)} runs in {el:.2f} s ({len(df) / el:,.0f} runs/s), outcomes {counts}")
     if df.attrs.get("interrupted"):
-        return interrupted_exit(len(df), n_total, "runs", (args.csv, args.png))
-    print(f"wrote {args.png} and {args.csv}")
+        return interrupted_exit(len(df), n_total, "runs", [args.png] + tables)
+    wrote([args.png] + tables)
     return 0
 
 
@@ -174,15 +218,13 @@ def cmd_simulate(args):
     print(f"outcome {r.outcome} ({r.status}); kernel {r.kernel}")
     print(f"max |theta|/alpha = {m['max_rotation_ratio']:.6g}, impacts = {m['impacts']}, "
           f"uplift t = {m['time_uplift']:.6g} s, overturn t = {m['time_overturn']:.6g} s, nfev = {m['nfev']}")
-    if args.csv:
-        r.history.to_csv(args.csv, index=False)
-        print(f"wrote {args.csv}")
+    wrote(write_table(r.history, args))
     if args.events:
         r.events.to_csv(args.events, index=False)
-        print(f"wrote {args.events}")
+        wrote([args.events])
     if args.png:
         r.plot().savefig(args.png, dpi=130)
-        print(f"wrote {args.png}")
+        wrote([args.png])
     return 0
 
 
@@ -196,40 +238,46 @@ def cmd_warmup(args):
 def build_parser():
     p = argparse.ArgumentParser(prog="fastrock", description="Rocking, sliding and overturning of "
                                 "free-standing bodies under ground shaking.")
+    from . import __version__
+    p.add_argument("--version", action="version", version=f"fastrock {__version__}")
     sub = p.add_subparsers(dest="command", required=True)
 
     s = sub.add_parser("spectrum", help="overturning spectrum under pulses (PNG + CSV)",
                        description="Overturning spectrum a_p/(g tan alpha) against omega_p/p under "
                                    "one-sine pulses, on built-in defaults.")
     _add_body_options(s)
-    s.add_argument("--pulse", default="one-sine", choices=("one-sine", "half-sine", "one-cosine"))
+    s.add_argument("--pulse", default="one-sine", choices=("one-sine", "half-sine", "one-cosine"),
+                   help="pulse shape (default one-sine)")
     s.add_argument("--sign", default="1", choices=("1", "-1", "both"), help="pulse sign (default +1)")
-    s.add_argument("--amp-min", type=float, default=0.5, help="min a_p/(g tan alpha) (default 0.5)")
-    s.add_argument("--amp-max", type=float, default=8.0, help="max a_p/(g tan alpha) (default 8)")
-    s.add_argument("--n-amp", type=int, default=120)
-    s.add_argument("--freq-min", type=float, default=0.25, help="min omega_p/p (default 0.25)")
-    s.add_argument("--freq-max", type=float, default=10.0, help="max omega_p/p (default 10)")
-    s.add_argument("--n-freq", type=int, default=120)
+    s.add_argument("--amp-min", type=float, default=0.5, help="smallest a_p/(g tan alpha) [-] (default 0.5)")
+    s.add_argument("--amp-max", type=float, default=8.0, help="largest a_p/(g tan alpha) [-] (default 8)")
+    s.add_argument("--n-amp", type=int, default=120, help="number of amplitudes (default 120)")
+    s.add_argument("--freq-min", type=float, default=0.25, help="smallest omega_p/p [-] (default 0.25)")
+    s.add_argument("--freq-max", type=float, default=10.0, help="largest omega_p/p [-] (default 10)")
+    s.add_argument("--n-freq", type=int, default=120, help="number of frequencies (default 120)")
     _add_solver_options(s)
-    s.add_argument("--png", default="spectrum.png", help="output figure (default spectrum.png)")
-    s.add_argument("--csv", default="spectrum.csv", help="output table (default spectrum.csv)")
-    s.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_output_options(s, png="spectrum.png", csv="spectrum.csv", figure="the spectrum figure",
+                       table="the table of runs")
     s.set_defaults(func=cmd_spectrum)
 
     s = sub.add_parser("simulate", help="one run under a pulse: outcome, time history, events")
     _add_body_options(s)
-    s.add_argument("--pulse", default="one-sine", choices=("one-sine", "half-sine", "one-cosine"))
-    s.add_argument("--amplitude", type=float, default=3.0)
-    s.add_argument("--amplitude-unit", default="g_tan_alpha", choices=("g", "m/s2", "g_tan_alpha"))
-    s.add_argument("--frequency", type=float, default=2.0)
-    s.add_argument("--frequency-unit", default="omega_p/p", choices=("Hz", "rad/s", "omega_p/p"))
-    s.add_argument("--sign", type=int, default=1, choices=(1, -1))
-    s.add_argument("--theta0", type=float, default=0.0, help="initial rotation [rad]")
+    s.add_argument("--pulse", default="one-sine", choices=("one-sine", "half-sine", "one-cosine"),
+                   help="pulse shape (default one-sine)")
+    s.add_argument("--amplitude", type=float, default=3.0,
+                   help="pulse amplitude [--amplitude-unit] (default 3)")
+    s.add_argument("--amplitude-unit", default="g_tan_alpha", choices=("g", "m/s2", "g_tan_alpha"),
+                   help="unit of --amplitude (default g_tan_alpha, i.e. a_p/(g tan alpha))")
+    s.add_argument("--frequency", type=float, default=2.0,
+                   help="pulse frequency [--frequency-unit] (default 2)")
+    s.add_argument("--frequency-unit", default="omega_p/p", choices=("Hz", "rad/s", "omega_p/p"),
+                   help="unit of --frequency (default omega_p/p)")
+    s.add_argument("--sign", type=int, default=1, choices=(1, -1), help="pulse sign (default +1)")
+    s.add_argument("--theta0", type=float, default=0.0, help="initial rotation [rad] (default 0)")
     s.add_argument("--duration", type=float, help="end time [s] (default: pulse + 10 s)")
     _add_solver_options(s)
-    s.add_argument("--csv", help="write the time history")
-    s.add_argument("--events", help="write the events table")
-    s.add_argument("--png", help="write a time-history figure")
+    add_output_options(s, figure="the time-history figure", table="the time history")
+    s.add_argument("--events", metavar="FILE", help="write the events table as CSV (default: not written)")
     s.set_defaults(func=cmd_simulate)
 
     s = sub.add_parser("warmup", help="compile (or load from cache) the kernels ahead of a sweep")
@@ -241,6 +289,10 @@ def build_parser():
 
     for register in _extra_commands():
         register(sub)
+    for cmd in sub.choices.values():
+        if "--quiet" not in cmd._option_string_actions:
+            cmd.add_argument("--quiet", "-q", action="store_true",
+                             help="print only errors: no progress bar, no summary (default: off)")
     return p
 
 
@@ -263,6 +315,11 @@ def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
+        if args.quiet:
+            import contextlib
+            import os
+            with open(os.devnull, "w") as null, contextlib.redirect_stdout(null):
+                return args.func(args)
         return args.func(args)
     except ValueError as exc:
         print(f"fastrock: error: {exc}", file=sys.stderr)

@@ -34,6 +34,7 @@ Yu, Gutschmidt & MacRae: experiments on rocking against vibration of a block on 
 
 from __future__ import annotations
 
+import argparse
 import csv
 import io
 import math
@@ -1727,7 +1728,7 @@ def add_fit_subcommand(subparsers):
     """Register ``fit`` on an :mod:`argparse` sub-parsers object.
 
     ``fastrock fit FILE [--theta0-deg X] [--alpha-deg Y] [--model housner]
-    [--definition impact|peak] [--min-duration S] [--plot out.png] [--csv out.csv]``
+    [--definition impact|peak] [--min-duration S] [--png out.png] [--csv out.csv] [--parquet out.parquet]``
 
     Parameters
     ----------
@@ -1746,21 +1747,27 @@ def add_fit_subcommand(subparsers):
                     "peak_deg, theta0_deg, alpha_deg optional). Several theta0_deg groups are "
                     "fitted jointly with shared (p, e) unless --theta0-deg selects one.")
     p.add_argument("file", metavar="FILE", help="half-cycle CSV file")
-    p.add_argument("--theta0-deg", type=float, default=None,
-                   help="release angle [deg]; selects a group if FILE has theta0_deg")
-    p.add_argument("--alpha-deg", type=float, default=None,
-                   help="slenderness [deg] (default: alpha_deg column)")
+    th = p.add_mutually_exclusive_group()
+    th.add_argument("--theta0", type=float, default=None,
+                    help="release angle [rad]; selects a group if FILE has theta0_deg (default: "
+                         "the file's theta0_deg column, every group)")
+    th.add_argument("--theta0-deg", type=float, default=None, help="the same in degrees [deg] (default: none)")
+    al = p.add_mutually_exclusive_group()
+    al.add_argument("--alpha", type=float, default=None,
+                    help="slenderness [rad] (default: the file's alpha_deg column)")
+    al.add_argument("--alpha-deg", type=float, default=None, help="the same in degrees [deg] (default: none)")
     p.add_argument("--model", default="housner", help="model (default: housner)")
     p.add_argument("--definition", choices=_DEFINITIONS, default="impact",
                    help="half-cycle definition of the data (default: impact)")
     p.add_argument("--min-duration", type=float, default=None,
-                   help="exclude measured durations below this [s] from the fit")
+                   help="exclude measured durations below this [s] from the fit (default: none)")
     p.add_argument("--param", metavar="NAME=VALUE", action="append", default=[],
                    help="starting value of a fitted parameter, repeatable; the foundation "
                         "models need them, e.g. --model two-spring --param p=4.7 "
-                        "--param omega=40 --param zeta=0.05")
-    p.add_argument("--plot", metavar="PNG", default=None, help="write a figure of the fit")
-    p.add_argument("--csv", metavar="CSV", default=None, help="write the fit table")
+                        "--param omega=40 --param zeta=0.05 (default: the model's own starts)")
+    from .cli import add_output_options
+    add_output_options(p, figure="a figure of the fit", table="the fit table")
+    p.add_argument("--plot", dest="png", metavar="FILE", help=argparse.SUPPRESS)  # the old name of --png
     p.set_defaults(func=run_fit_command)
     return p
 
@@ -1793,8 +1800,8 @@ def run_fit_command(args) -> int:
         0 on success, 2 on invalid input (message on stderr).
     """
     try:
-        theta0 = None if args.theta0_deg is None else math.radians(args.theta0_deg)
-        alpha = None if args.alpha_deg is None else math.radians(args.alpha_deg)
+        theta0 = args.theta0 if args.theta0_deg is None else math.radians(args.theta0_deg)
+        alpha = args.alpha if args.alpha_deg is None else math.radians(args.alpha_deg)
         extra = {}
         params0 = _parse_params(getattr(args, "param", []) or [])
         if params0:
@@ -1805,15 +1812,14 @@ def run_fit_command(args) -> int:
         print(f"fastrock fit: error: {exc}", file=sys.stderr)
         return 2
     print(fit.summary())
-    if args.csv:
-        fit.to_frame().to_csv(args.csv, index=False)
-        print(f"fit table written to {args.csv}")
-    if args.plot:
+    from .cli import write_table, wrote
+    wrote(write_table(fit.to_frame(), args))
+    if args.png:
         from matplotlib.figure import Figure
         fig = Figure(figsize=(7, 4.5))
         ax = fig.add_subplot()
         plot_fit(fit, ax=ax)
         fig.tight_layout()
-        fig.savefig(args.plot, dpi=120)
-        print(f"figure written to {args.plot}")
+        fig.savefig(args.png, dpi=120)
+        wrote([args.png])
     return 0

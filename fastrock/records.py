@@ -877,12 +877,12 @@ def _parse_record_text(
     if file_dt is None:
         raise ValueError(
             f"{path}: data without NPTS/DT header or time column; the time step "
-            "must be given (dt=...)"
+            "must be given (dt=..., or --record-dt on the command line)"
         )
     if out_unit is None:
         raise ValueError(
             f"{path}: the file header does not state the acceleration unit; the "
-            f"unit must be given (unit=..., one of {', '.join(UNITS)})"
+            f"unit must be given (unit=... or --unit, one of {', '.join(UNITS)})"
         )
     return acc, file_dt, out_unit, origin
 

@@ -226,13 +226,45 @@ def _read_one(path, unit=None, dt=None, **layout):
     raise first
 
 
+#: File suffixes a folder of records contributes (any letter case).
+RECORD_SUFFIXES = (".at2", ".dat")
+
+
+def _expand_paths(path):
+    """A folder gives its record files (RECORD_SUFFIXES, any letter case), a glob pattern its
+    matches (the file-name part matched without regard to case); any other path itself."""
+    text = os.fspath(path)
+    p = Path(text)
+    if p.is_dir():
+        found = sorted(f for f in p.iterdir() if f.is_file() and f.suffix.lower() in RECORD_SUFFIXES)
+        if not found:
+            raise ValueError(f"records: no record files ({', '.join(RECORD_SUFFIXES)}, any case) in "
+                             f"the folder {text}")
+        return found
+    if not p.exists() and any(c in text for c in "*?["):
+        import fnmatch
+        import glob
+        folder, pattern = os.path.split(text)
+        if any(c in folder for c in "*?["):
+            found = sorted(Path(f) for f in glob.glob(text) if os.path.isfile(f))
+        else:
+            base = Path(folder or ".")
+            found = sorted(f for f in base.iterdir() if f.is_file()
+                           and fnmatch.fnmatchcase(f.name.lower(), pattern.lower())) if base.is_dir() else []
+        if not found:
+            raise ValueError(f"records: no file matches {text}")
+        return found
+    return [path]
+
+
 def load_records(records, unit=None, dt=None, *, column=None, decimal=None):
     """Records as a list of GroundMotion with unique names.
 
     Parameters
     ----------
     records : GroundMotion, SampledMotion, path, or a sequence of them
-        None: the packaged El Centro record.
+        None: the packaged El Centro record.  A folder stands for its ``.AT2`` and ``.dat``
+        files (any letter case), a glob pattern (``"records/*.at2"``) for its matches.
     unit : str, optional
         Unit of files whose header does not state it ('g', 'm/s2', ...).
     dt : float, optional
@@ -244,6 +276,7 @@ def load_records(records, unit=None, dt=None, *, column=None, decimal=None):
         records = [load_default_record()]
     elif isinstance(records, (GroundMotion, str, os.PathLike)) or hasattr(records, "acc"):
         records = [records]
+    records = [f for r in records for f in (_expand_paths(r) if isinstance(r, (str, os.PathLike)) else [r])]
     out = []
     for r in records:
         if isinstance(r, GroundMotion):
@@ -874,13 +907,13 @@ DEFAULT_RECORD_BLOCK = (0.3, 1.5)
 
 
 def _cli_record(args):
-    rec = _cli_one_record(args.file, args.unit, args.dt, args)
+    rec = _cli_one_record(args.file, args.unit, args.record_dt, args)
     body = _cli_body(args)
     wall = _cli_wall(args)
     fixed = args.dt_fixed is not None and args.dt_fixed.strip().lower() == "record"
     kw = dict(wall=wall, rtol=args.rtol, atol=args.atol, t_after=args.t_after)
     if args.dt_fixed is not None and not fixed:
-        kw["dt"] = V.positive("--dt-fixed", _float_arg("--dt-fixed", args.dt_fixed))
+        kw["dt"] = V.positive("--dt", _float_arg("--dt", args.dt_fixed))
     r = simulate_record(body, rec, fixed_step=fixed, **kw)
     m = r.metrics
     print(f"record: {rec.name}" + (f"  ({rec.source})" if rec.source else ""))
@@ -899,13 +932,12 @@ def _cli_record(args):
     print(f"  max |theta|/alpha = {m['max_rotation_ratio']:.4g}, impacts = {m['impacts']}"
           + (f", wall impacts = {m['wall_impacts']}" if wall is not None else "")
           + f", uplift t = {_time(m['time_uplift'])}, overturn t = {_time(m['time_overturn'])}")
-    if args.csv:
-        r.history.to_csv(args.csv, index=False)
-        print(f"wrote {args.csv}")
+    from .cli import wrote, write_table
+    wrote(write_table(r.history, args))
     if args.png:
         fig = _record_figure(rec, r)
         fig.savefig(args.png, dpi=120)
-        print(f"wrote {args.png}")
+        wrote([args.png])
     return 0
 
 
@@ -978,7 +1010,7 @@ def _cli_wall(args):
 
 def _cli_rocking_spectrum(args):
     import time
-    records = load_records(args.files or None, args.unit, args.dt, column=_column_arg(args.column),
+    records = load_records(args.files or None, args.unit, args.record_dt, column=_column_arg(args.column),
                            decimal=args.decimal)
     from .cli import grid_option
     s = grid_option("--slenderness", args.slenderness_min, args.slenderness_max, args.n_slenderness,
@@ -986,7 +1018,7 @@ def _cli_rocking_spectrum(args):
     b = grid_option("--b", args.b_min, args.b_max, args.n_sizes, n_option="--n-sizes")
     walls = parse_walls(args.walls) if args.walls else None
     t0 = time.perf_counter()
-    table, runs = rocking_spectrum(records, s, b, walls, rtol=args.rtol, t_after=args.t_after,
+    table, runs = rocking_spectrum(records, s, b, walls, rtol=args.rtol, dt=args.dt, t_after=args.t_after,
                                    progress=not args.quiet, return_runs=True)
     el = time.perf_counter() - t0
     print(f"{len(runs)} runs ({len(records)} records x {len(table.attrs['walls'])} wall settings x "
@@ -1003,22 +1035,24 @@ def _cli_rocking_spectrum(args):
         non_monotone=("non_monotone", "sum"), overturned=("n_overturned", "sum"))
     with pd.option_context("display.width", 160, "display.max_columns", 20):
         print(agg.round(3).to_string())
-    table.to_csv(args.csv, index=False)
+    from .cli import wrote, write_table
+    tables = write_table(table, args)
     fig = plot_rocking_spectrum(table, title=f"{len(records)} record(s), "
                                              f"{args.n_sizes}x{args.n_slenderness} blocks")
     fig.savefig(args.png, dpi=130)
     if table.attrs.get("interrupted"):
         from .cli import interrupted_exit
         return interrupted_exit(int((runs["outcome"] != "unfinished").sum()), len(runs), "runs",
-                                (args.csv, args.png))
-    print(f"wrote {args.csv} and {args.png}")
+                                tables + [args.png])
+    wrote(tables + [args.png])
     return 0
 
 
 def _add_record_options(p):
     p.add_argument("--unit", help="acceleration unit of files whose header does not state it "
-                                  "(g, m/s2, cm/s2/gal, mm/s2)")
-    p.add_argument("--dt", type=float, help="time step [s] of single-column files")
+                                  "(g, m/s2, cm/s2/gal, mm/s2; default: refuse such files)")
+    p.add_argument("--record-dt", type=float, help="sample step [s] of single-column files "
+                                                   "(default: refuse such files)")
     p.add_argument("--column", help="data column holding the acceleration in files with several "
                                     "columns (0-based, negative from the end), or 'all' for one "
                                     "record wrapped over rows (default: refuse such files)")
@@ -1037,44 +1071,50 @@ def add_subcommands(subparsers):
     _add_record_options(s)
     g = s.add_argument_group("block (default: b = 0.3 m, h = 1.5 m; rocks, does not overturn "
                              "under El Centro)")
-    g.add_argument("--b", type=float, help="half-width [m] (with --h)")
-    g.add_argument("--h", type=float, help="half-height [m]")
-    g.add_argument("--alpha", type=float, help="slenderness angle [rad] (with --p)")
-    g.add_argument("--p", type=float, help="frequency parameter [rad/s]")
-    g.add_argument("--e", type=float, help="restitution (default Housner)")
+    g.add_argument("--b", type=float, help="half-width [m] (with --h; default 0.3)")
+    g.add_argument("--h", type=float, help="half-height [m] (default 1.5)")
+    g.add_argument("--alpha", type=float, help="slenderness angle [rad] (with --p; default: from --b/--h)")
+    g.add_argument("--p", type=float, help="frequency parameter [rad/s] (default: from --b/--h)")
+    g.add_argument("--e", type=float, help="ground impact restitution e [-] (default Housner)")
     w = s.add_argument_group("rear wall")
     w.add_argument("--wall-gap", type=float, help="clear gap d [m] (default: no wall)")
     w.add_argument("--wall-side", type=int, default=-1, choices=(-1, 1),
                    help="side of the wall (default -1)")
     i = s.add_argument_group("integrator")
-    i.add_argument("--rtol", type=float, help="RK45 relative tolerance (default 1e-8)")
-    i.add_argument("--atol", type=float, help="absolute tolerance (default rtol*1e-2)")
-    i.add_argument("--dt-fixed", help="fixed step [s], or 'record' to follow the record's dt")
+    i.add_argument("--rtol", type=float, help="relative tolerance of adaptive RK45 [-] (default 1e-8)")
+    i.add_argument("--atol", type=float, help="absolute tolerance [rad, rad/s] (default rtol*1e-2)")
+    i.add_argument("--dt", "--dt-fixed", dest="dt_fixed", metavar="DT",
+                   help="fixed integration step [s] instead of adaptive RK45, or 'record' to step "
+                        "at the record's dt (default: adaptive)")
     s.add_argument("--t-after", type=float, default=T_AFTER,
                    help=f"free rocking after the record [s] (default {T_AFTER:g})")
-    s.add_argument("--png", default="record.png", help="figure: record acc/vel/disp and "
-                                                       "theta/alpha (default record.png)")
-    s.add_argument("--csv", help="write the rocking time history")
+    from .cli import add_output_options
+    add_output_options(s, png="record.png", figure="the figure of the record (acc/vel/disp) and "
+                       "theta/alpha", table="the rocking time history")
     s.set_defaults(func=_cli_record)
 
     s = subparsers.add_parser(
         "rocking-spectrum", help="beta against Tp/Tm over records x blocks x wall settings",
         description="For each record, block size and wall setting, find the minimum stable "
                     "slenderness on a grid and report beta = (b/h)_min g / PGA against Tp/Tm.")
-    s.add_argument("files", nargs="*", help="record files (default: packaged El Centro)")
+    s.add_argument("files", nargs="*", help="record files, folders (their .AT2 and .dat files, any "
+                                           "letter case) or quoted glob patterns (default: "
+                                           "packaged El Centro)")
     _add_record_options(s)
-    s.add_argument("--n-slenderness", type=int, default=20, help="b/h values (default 20)")
-    s.add_argument("--slenderness-min", type=float, default=0.1)
-    s.add_argument("--slenderness-max", type=float, default=0.5)
-    s.add_argument("--n-sizes", type=int, default=20, help="half-widths b (default 20)")
-    s.add_argument("--b-min", type=float, default=0.1, help="smallest half-width [m]")
-    s.add_argument("--b-max", type=float, default=1.0, help="largest half-width [m]")
+    s.add_argument("--n-slenderness", type=int, default=20, help="number of b/h values (default 20)")
+    s.add_argument("--slenderness-min", type=float, default=0.1, help="smallest b/h [-] (default 0.1)")
+    s.add_argument("--slenderness-max", type=float, default=0.5, help="largest b/h [-] (default 0.5)")
+    s.add_argument("--n-sizes", type=int, default=20, help="number of half-widths b (default 20)")
+    s.add_argument("--b-min", type=float, default=0.1, help="smallest half-width [m] (default 0.1)")
+    s.add_argument("--b-max", type=float, default=1.0, help="largest half-width [m] (default 1)")
     s.add_argument("--walls", help="comma list of settings, e.g. two-sided,0.01,0.10 (gaps in m; "
                                    "default: these three if the wall model is installed)")
-    s.add_argument("--rtol", type=float, help="RK45 relative tolerance (default 1e-8)")
+    s.add_argument("--rtol", type=float, help="relative tolerance of adaptive RK45 [-] (default 1e-8)")
+    s.add_argument("--dt", type=float, help="fixed integration step [s] instead of adaptive RK45 "
+                                            "(default: adaptive)")
     s.add_argument("--t-after", type=float, default=T_AFTER,
                    help=f"free rocking after each record [s] (default {T_AFTER:g})")
-    s.add_argument("--png", default="rocking_spectrum.png")
-    s.add_argument("--csv", default="rocking_spectrum.csv")
-    s.add_argument("--quiet", action="store_true", help="no progress bar")
+    from .cli import add_output_options
+    add_output_options(s, png="rocking_spectrum.png", csv="rocking_spectrum.csv",
+                       figure="the beta against Tp/Tm figure", table="the table of thresholds")
     s.set_defaults(func=_cli_rocking_spectrum)

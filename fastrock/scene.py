@@ -126,7 +126,7 @@ class Scene:
         run = _only(_table(data.get("run", {}), "run"), "run", {"theta0", "dtheta0", "duration", "t_after"})
         for k, v in run.items():      # checked here too, so that a bad file fails when it is read
             (V.positive if k == "duration" else V.non_negative if k == "t_after" else V.finite)(f"[run] {k}", v)
-        out = _only(_table(data.get("output", {}), "output"), "output", {"csv", "events", "png"})
+        out = _only(_table(data.get("output", {}), "output"), "output", {"csv", "parquet", "events", "png"})
         for k, v in out.items():
             if not isinstance(v, str) or not v:
                 raise ValueError(f"[output] {k} must be a file name (a string), got {v!r}")
@@ -231,8 +231,9 @@ def _excitation(d, base, section):
 def add_subcommand(sub):
     p = sub.add_parser("run", help="run a scene from a TOML file")
     p.add_argument("scene", help="scene file (TOML); see examples/scenes/")
-    p.add_argument("--csv", help="time-history CSV (overrides [output] csv)")
-    p.add_argument("--png", help="time-history figure (overrides [output] png)")
+    from .cli import add_output_options
+    add_output_options(p, figure="the time-history figure (overrides [output] png)",
+                       table="the time history (overrides [output] csv / parquet)")
     p.set_defaults(func=_cmd_run)
 
 
@@ -244,16 +245,15 @@ def _cmd_run(args):
     print(f"outcome {r.outcome} ({r.status}); max |theta|/alpha = {m['max_rotation_ratio']:.6g}; "
           f"impacts {m['impacts']}; nfev {m['nfev']}")
     out = dict(sc.outputs)
-    for k in ("csv", "png"):
-        if getattr(args, k):
+    for k in ("csv", "png", "parquet"):
+        if getattr(args, k, None):
             out[k] = getattr(args, k)
-    if out.get("csv"):
-        r.history.to_csv(out["csv"], index=False)
-        print(f"wrote {out['csv']}")
+    from .cli import write_table, wrote
+    wrote(write_table(r.history, args, csv=out.get("csv") or "", parquet=out.get("parquet") or ""))
     if out.get("events"):
         r.events.to_csv(out["events"], index=False)
-        print(f"wrote {out['events']}")
+        wrote([out["events"]])
     if out.get("png"):
         r.plot().savefig(out["png"], dpi=130)
-        print(f"wrote {out['png']}")
+        wrote([out["png"]])
     return 0

@@ -1548,22 +1548,38 @@ def _cli_study(args):
     print(f"results: {output} (fastrock.study.load_results)")
     print("outcomes:", df["outcome"].value_counts().to_dict())
     im = {"pga": "pga_g", "pgv": "pgv"}.get(study.measure, study.measure)
-    rows = []
+    rows, table, fits = [], [], []
     for (body, var), grp in df.groupby(["body", "variant"], sort=False):
         try:
-            f = fit_fragility(grp, im=im, n_boot=args.n_boot)
+            f = fit_fragility(grp, im=im, n_boot=args.n_boot, label=f"{body}, {var}")
             lo, hi = f.interval()["theta"]
             rows.append((body, var, f"{f.theta:.4g}", f"{f.beta:.3f}", f"[{lo:.4g}, {hi:.4g}]"))
+            table.append((body, var, im, f.theta, f.beta, lo, hi, ""))
+            fits.append(f)
         except ValueError as exc:
-            rows.append((body, var, "-", "-", str(exc).split(": ", 2)[-1][:40]))
+            reason = str(exc).split(": ", 2)[-1]
+            rows.append((body, var, "-", "-", reason[:40]))
+            table.append((body, var, im, math.nan, math.nan, math.nan, math.nan, reason))
     print(f"overturning fragility against {im} (theta, beta; 90% bootstrap interval of theta):")
     print(pd.DataFrame(rows, columns=["body", "variant", "theta", "beta", "theta 90%"]).to_string(
         index=False))
+    from .cli import write_table, wrote
+    written = write_table(pd.DataFrame(table, columns=FRAGILITY_TABLE_COLUMNS), args)
+    if args.png and fits:
+        plot_fragility(fits).savefig(args.png, dpi=130)
+        written.append(args.png)
     if a["interrupted"]:
         from .cli import interrupted_exit
         return interrupted_exit(a["chunks_skipped"] + a["chunks_run"], a["n_chunks"], "chunks",
-                                (output,))
+                                [output] + written)
+    wrote(written)
     return 0
+
+
+#: Columns of ``fastrock study --csv``: the fragility fit per body and variant; theta in the
+#: measure's unit (g for pga_g, m/s for pgv), theta_lo/theta_hi its 90 % bootstrap interval,
+#: ``note`` why a fit failed (its numbers are then NaN).
+FRAGILITY_TABLE_COLUMNS = ["body", "variant", "measure", "theta", "beta", "theta_lo", "theta_hi", "note"]
 
 
 def add_subcommand(subparsers):
@@ -1577,11 +1593,13 @@ def add_subcommand(subparsers):
     s.add_argument("--output", help="results folder (default: [run] output, or <study>_results)")
     s.add_argument("--backend", choices=("local", "dask"),
                    help="local (default) or dask (default with --scheduler)")
-    s.add_argument("--scheduler", help="Dask scheduler address, e.g. tcp://host:8786 (without it, "
-                                       "--backend dask starts a local cluster)")
+    s.add_argument("--scheduler", help="Dask scheduler address, e.g. tcp://host:8786 (default: none; "
+                                       "--backend dask then starts a local cluster)")
     s.add_argument("--chunk-size", type=int, help=f"rows per chunk (default {DEFAULT_CHUNK_SIZE})")
     s.add_argument("--connect-timeout", type=float, default=CONNECT_TIMEOUT,
-                   help=f"seconds to reach the scheduler (default {CONNECT_TIMEOUT:g})")
+                   help=f"time to reach the scheduler [s] (default {CONNECT_TIMEOUT:g})")
     s.add_argument("--n-boot", type=int, default=200, help="bootstrap resamples (default 200)")
-    s.add_argument("--quiet", action="store_true", help="no progress bar")
+    from .cli import add_output_options
+    add_output_options(s, figure="the fragility curves", table="the fragility table (theta, beta "
+                       "per body and variant)")
     s.set_defaults(func=_cli_study)

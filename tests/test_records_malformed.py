@@ -383,7 +383,7 @@ def test_column_and_decimal_reach_every_entry_point(tmp_path, capsys):
     assert cli.main(["record", str(p), "--unit", "g", "--png", str(tmp_path / "r.png")]) == 2
     assert "column=K" in capsys.readouterr().err
     assert cli.main(["record", str(p), "--unit", "g", "--column", "1", "--png", str(tmp_path / "r.png")]) == 0
-    assert cli.main(["record", str(q), "--unit", "g", "--dt", str(DT), "--decimal", ",",
+    assert cli.main(["record", str(q), "--unit", "g", "--record-dt", str(DT), "--decimal", ",",
                      "--png", str(tmp_path / "q.png")]) == 0
     assert cli.main(["record", str(p), "--unit", "g", "--column", "x"]) == 2
     assert "--column must be an integer" in capsys.readouterr().err

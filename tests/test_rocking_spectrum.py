@@ -505,7 +505,7 @@ def test_cli_record_default(capsys, tmp_path):
 
 def test_cli_record_fixed_step_and_block(capsys, tmp_path):
     from fastrock.cli import main
-    assert main(["record", "--b", "0.15", "--h", "0.75", "--dt-fixed", "record",
+    assert main(["record", "--b", "0.15", "--h", "0.75", "--dt", "record",
                  "--png", str(tmp_path / "a.png")]) == 0
     out = capsys.readouterr().out
     assert "outcome: mode1" in out and "record dt = 0.02 s" in out
@@ -527,8 +527,7 @@ def test_cli_rocking_spectrum_writes_csv_png(capsys, tmp_path):
     from fastrock.cli import main
     png, csv = tmp_path / "rs.png", tmp_path / "rs.csv"
     assert main(["rocking-spectrum", str(RECORDS / "RIO270.AT2"), "--n-slenderness", "5",
-                 "--n-sizes", "3", "--walls", "two-sided", "--png", str(png), "--csv", str(csv),
-                 "--quiet"]) == 0
+                 "--n-sizes", "3", "--walls", "two-sided", "--png", str(png), "--csv", str(csv)]) == 0
     out = capsys.readouterr().out
     assert "15 runs" in out and "RIO270: PGA = 0.385 g" in out
     df = pd.read_csv(csv)
@@ -581,7 +580,7 @@ def test_cli_record_single_column_file_needs_unit_and_dt(capsys, tmp_path):
     png = str(tmp_path / "p.png")
     assert main(["record", str(f), "--unit", "g", "--png", png]) == 2
     assert "dt" in capsys.readouterr().err
-    assert main(["record", str(f), "--unit", "g", "--dt", "0.005", "--png", png]) == 0
+    assert main(["record", str(f), "--unit", "g", "--record-dt", "0.005", "--png", png]) == 0
     out = capsys.readouterr().out
     assert "PGA = 0.4 g" in out and "201 points, dt = 0.005 s" in out
 

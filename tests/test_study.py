@@ -339,7 +339,7 @@ def test_toml_and_cli(tmp_path, capsys):
         '[run]\noutput = "res"\nchunk_size = 3\n')
     st = Study.from_toml(tmp_path / "s.toml")
     assert st.n_runs == 8 and st.run["output"] == str(tmp_path / "res")
-    assert main([ "study", str(tmp_path / "s.toml"), "--quiet", "--n-boot", "10"]) == 0
+    assert main([ "study", str(tmp_path / "s.toml"), "--n-boot", "10"]) == 0
     out = capsys.readouterr().out
     assert "8 runs in 3 chunks of 3" in out
     df = load_results(tmp_path / "res")
