@@ -1245,91 +1245,67 @@ class FragilityFit:
                 "beta": tuple(np.percentile(self.boot_beta, q))}
 
 
-_SQRT2 = math.sqrt(2.0)
-_erfc = np.frompyfunc(math.erfc, 1, 1)
-
-
-def _ndtr(z):
-    """Phi(z) from math.erfc (accurate in both tails)."""
-    z = np.asarray(z, float)
-    return np.asarray(0.5 * _erfc(-z / _SQRT2), dtype=float)
-
-
 def _fragility(im, theta, beta):
+    from scipy import special
     with np.errstate(divide="ignore"):
-        return _ndtr(np.log(im / theta) / beta)
+        return special.ndtr(np.log(im / theta) / beta)
 
 
-def _log_ndtr(z):
-    """ln Phi(z); the asymptotic series below z = -20 (Phi underflows near -38)."""
-    z = np.asarray(z, float)
-    out = np.empty_like(z)
-    lo = z < -20.0
-    out[~lo] = np.log(_ndtr(z[~lo]))
-    zl = z[lo]
-    out[lo] = -0.5 * zl * zl - np.log(-zl) - 0.5 * math.log(2 * math.pi) + np.log1p(-1 / (zl * zl))
-    return out
+_LN_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
 
 
 def _mills(z):
-    """phi(z) / Phi(z), stable for very negative z."""
+    """phi(z) / Phi(z), stable for very negative z (both in logs)."""
+    from scipy import special
     z = np.asarray(z, float)
-    out = np.empty_like(z)
-    lo = z < -20.0
-    zz = z[~lo]
-    out[~lo] = np.exp(-0.5 * zz * zz) / math.sqrt(2 * math.pi) / _ndtr(zz)
-    zl = z[lo]
-    out[lo] = -zl / (1 - 1 / (zl * zl) + 3 / zl ** 4)
-    return out
+    return np.exp(-0.5 * z * z - _LN_SQRT_2PI - special.log_ndtr(z))
 
 
-def _probit_mle(u, n, k, max_iter=100):
-    """Maximise sum k ln Phi(a + b u) + (n - k) ln Phi(-(a + b u)) by Newton
-    with step halving (the probit log-likelihood is concave).
+def _probit_mle(u, n, k):
+    """Maximise sum k ln Phi(a + b u) + (n - k) ln Phi(-(a + b u)) (concave) with
+    scipy.optimize.minimize, trust-exact, on the analytic gradient and Hessian.  (Not
+    least_squares: a binomial likelihood is no sum of squares.)
 
     Returns (a, b, cov_ab, loglik) on the standardised u; None if the
     outcomes are separated (no finite maximum) or b <= 0.
     """
-    def ll(a, b):
-        eta = a + b * u
-        return float(np.sum(k * _log_ndtr(eta) + (n - k) * _log_ndtr(-eta)))
-
+    from scipy import optimize, special
     if not ((k > 0).any() and (k < n).any()):
         return None
     hi_no = u[k < n].max()        # largest IM with a non-event
     lo_yes = u[k > 0].min()       # smallest IM with an event
     if hi_no <= lo_yes:
         return None               # (quasi-)complete separation: beta -> 0
-    a, b = 0.0, 1.0
-    f = ll(a, b)
-    for _ in range(max_iter):
-        eta = a + b * u
+
+    def parts(x):
+        eta = x[0] + x[1] * u
         lp, lm = _mills(eta), _mills(-eta)
         s = k * lp - (n - k) * lm
         h = -k * lp * (eta + lp) - (n - k) * lm * (lm - eta)
-        g = np.array([s.sum(), (s * u).sum()])
-        H = np.array([[h.sum(), (h * u).sum()], [(h * u).sum(), (h * u * u).sum()]])
-        try:
-            step = -np.linalg.solve(H, g)
-        except np.linalg.LinAlgError:
-            return None
-        t = 1.0
-        while True:
-            a1, b1 = a + t * step[0], b + t * step[1]
-            f1 = ll(a1, b1)
-            if f1 >= f - 1e-12 * abs(f) or t < 1e-10:
-                break
-            t *= 0.5
-        a, b, f_old, f = a1, b1, f, f1
-        if np.max(np.abs(t * step)) < 1e-10 or abs(f - f_old) < 1e-14 * max(1.0, abs(f)):
-            break
-    if not (b > 0 and np.isfinite(b)):
+        return eta, s, h
+
+    def neg_ll(x):
+        eta = x[0] + x[1] * u
+        return -float(np.sum(k * special.log_ndtr(eta) + (n - k) * special.log_ndtr(-eta)))
+
+    def neg_grad(x):
+        _, s, _ = parts(x)
+        return -np.array([s.sum(), (s * u).sum()])
+
+    def neg_hess(x):
+        _, _, h = parts(x)
+        return -np.array([[h.sum(), (h * u).sum()], [(h * u).sum(), (h * u * u).sum()]])
+
+    res = optimize.minimize(neg_ll, np.array([0.0, 1.0]), jac=neg_grad, hess=neg_hess,
+                            method="trust-exact", options={"gtol": 1e-11, "maxiter": 200})
+    a, b = res.x
+    if not (b > 0 and np.isfinite(b) and np.isfinite(res.fun)):
         return None
-    eta = a + b * u
-    lp, lm = _mills(eta), _mills(-eta)
-    h = -k * lp * (eta + lp) - (n - k) * lm * (lm - eta)
-    H = np.array([[h.sum(), (h * u).sum()], [(h * u).sum(), (h * u * u).sum()]])
-    return a, b, np.linalg.inv(-H), f
+    try:
+        cov = np.linalg.inv(neg_hess(res.x))
+    except np.linalg.LinAlgError:
+        return None
+    return a, b, cov, -float(res.fun)
 
 
 def _fit_weighted(lnx, rec_w, rec_of_row, y, xs_index, nx):
@@ -1394,8 +1370,8 @@ def fit_fragility(df, im="pga_g", threshold=None, *, n_boot=200, seed=0, ci=0.90
     -----
     Rows whose run failed are left out (``n_excluded``).  Each row is a
     Bernoulli trial (Baker 2015, doi:10.1193/021113EQS025M): the
-    log-likelihood ``sum y ln P + (1-y) ln(1-P)`` is maximised by Newton's
-    method on the probit form ``P = Phi(a + b ln IM)``, where it is concave.
+    log-likelihood ``sum y ln P + (1-y) ln(1-P)`` is maximised (scipy.optimize.minimize,
+    trust-exact, analytic derivatives) on the probit form ``P = Phi(a + b ln IM)``, where it is concave.
     The standard errors treat rows as independent; the rows of one record are
     not, which the record bootstrap accounts for.
     """
