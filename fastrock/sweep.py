@@ -1,9 +1,8 @@
-"""Chunked parallel sweeps: progress, Ctrl-C keeps finished rows."""
+"""Chunked parallel sweeps: progress (tqdm), Ctrl-C keeps finished rows."""
 from __future__ import annotations
 
 import sys
 import threading
-import time
 import warnings
 from concurrent.futures import ThreadPoolExecutor
 
@@ -12,33 +11,54 @@ import numpy as np
 from fastrock.kernels import layout as L
 
 
+class _LogLines:
+    """A stream for tqdm that writes whole lines: no carriage returns in a log file."""
+
+    def __init__(self, stream):
+        self.stream = stream
+
+    def write(self, text):
+        text = text.replace("\r", "").strip()
+        if text:
+            self.stream.write(text + "\n")
+
+    def flush(self):
+        self.stream.flush()
+
+
 class Progress:
-    """A minimal progress bar on stderr (no dependency)."""
+    """Progress of a sweep on stderr through tqdm (terminals, notebooks; a log file gets a line
+    every ``LOG_INTERVAL`` s instead of a stream of carriage returns)."""
+
+    #: Seconds between progress lines when stderr is no terminal.
+    LOG_INTERVAL = 30.0
 
     def __init__(self, total, enabled=True, label="runs"):
         self.total = total
         self.enabled = enabled and total > 0
         self.label = label
-        self.t0 = time.perf_counter()
         self.done = 0
+        self._bar = None
+        if self.enabled:
+            from tqdm.auto import tqdm
+            tty = getattr(sys.stderr, "isatty", lambda: False)()
+            self._bar = tqdm(total=total, unit=" " + label, file=sys.stderr if tty else _LogLines(sys.stderr),
+                             dynamic_ncols=True, mininterval=0.1 if tty else self.LOG_INTERVAL,
+                             smoothing=0.1)
+
+    def stage(self, text):
+        """Show ``text`` ahead of the bar (e.g. "compiling ... (first use)"); "" clears it."""
+        if self._bar is not None:
+            self._bar.set_description_str(text, refresh=True)
 
     def update(self, n):
         self.done += n
-        if not self.enabled:
-            return
-        el = time.perf_counter() - self.t0
-        rate = self.done / el if el > 0 else float("inf")
-        frac = self.done / self.total
-        bar = "#" * int(30 * frac)
-        eta = (self.total - self.done) / rate if rate > 0 else 0.0
-        sys.stderr.write(f"\r[{bar:<30}] {self.done}/{self.total} {self.label} "
-                         f"{rate:,.0f}/s eta {eta:5.1f}s")
-        sys.stderr.flush()
+        if self._bar is not None:
+            self._bar.update(n)
 
     def close(self):
-        if self.enabled:
-            sys.stderr.write("\n")
-            sys.stderr.flush()
+        if self._bar is not None:
+            self._bar.close()
 
 
 _EXECUTOR = None
@@ -89,11 +109,14 @@ def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=Tr
     else:
         from ._validate import integer
         chunk_size = integer("chunk_size", chunk_size, 1)     # 0 would never advance
-    bar = Progress(n, progress and n > chunk_size, label)
-    if progress and model is not None and not getattr(sweep_kernel, "signatures", ()):
+    first_use = progress and model is not None and not getattr(sweep_kernel, "signatures", ())
+    if first_use:
         from .warmup import compile_notice
         sys.stderr.write(compile_notice(model, sweep_kernel) + "\n")
         sys.stderr.flush()
+    bar = Progress(n, progress and n > chunk_size, label)
+    if first_use:
+        bar.stage(f"compiling {model} (first use)")
     done = 0
     try:
         while done < n:
@@ -118,6 +141,8 @@ def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=Tr
             MET[sl] = met
             YF[sl] = yf
             done = stop
+            if first_use and sl.start == 0:
+                bar.stage("")
             bar.update(stop - sl.start)
     except KeyboardInterrupt:
         if done == n and reraise_when_complete:
