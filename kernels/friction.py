@@ -21,6 +21,8 @@ Events (g > 0 admissible; ids E_*):
               E_PEAK, E_PASS_ALPHA
   SLIDE       E_SLIP_STICK stick sigma*d', E_LIFT_OFF flight G
   ROCK, jammed (D_AUX = 1, below): E_SLIP_STICK the jam's end, E_LIFT_OFF off
+  SLIDE_ROCK continued at zero slip speed (D_AUX = 2, ``stick``):
+              E_SLIP_STICK max(sigma*d', |F_s| - mu_s N_s) (``creep_margin``)
 
 Contact mode at zero slip velocity (``pick_rocking``).  With the corner's
 contact accelerations a = a0 + W (F, N) (W the positive definite inverse
@@ -200,6 +202,8 @@ def event(k, t, y, par, disc, hdr, smp):
         return s * y[1], s * tdd, False      # E_PEAK
     tdd, dd, N = slip_rock(t, y[0], y[1], s, sig, par, hdr, smp)
     if k == E_SLIP_STICK:
+        if disc[D_AUX] == 2:
+            return creep_margin(t, y, s, sig, dd, par, hdr, smp)
         if y[3] == 0.0:
             # a slip just picked from zero speed runs forward: sigma a_t =
             # det W (|F_s| - mu_k N_s) i_G / D >= 0 exactly (module
@@ -219,6 +223,24 @@ def event(k, t, y, par, disc, hdr, smp):
         dD = w * (2.0 * X * Y + par[Q_MU_K] * sig * (Y * Y - X * X))
         return N, par[Q_IG] * (dA * D - A * dD) / (D * D), True
     return s * y[1], s * tdd, False          # E_PEAK
+
+
+@jit
+def creep_margin(t, y, s, sig, dd, par, hdr, smp):
+    """Stick event of a slip continued at zero slip speed (D_AUX = 2, see
+    ``stick``): > 0 while the slip toward sigma goes on, i.e. while it moves
+    forward (sigma d' > 0) or stick is still inadmissible with the stick
+    friction force pointing against sigma (|F_s| - mu_s N_s > 0, sigma =
+    -sgn F_s): then sigma d'' >= 0 exactly (module docstring), so a sigma d'
+    below 0 is rounding and must not end the slip (physics.md 4.5: accept
+    stick iff |F| <= mu_s N, else continue slipping).  Returns (g, dg/dt)."""
+    F, N, dF, dN = stick_force_rates(t, y[0], y[1], s, par, hdr, smp)
+    v = sig * y[3]
+    if (-1 if F > 0.0 else 1) == sig:
+        ex = abs(F) - par[Q_MU_S] * N
+        if ex > v:
+            return ex, (dF if F > 0.0 else -dF) - par[Q_MU_S] * dN, True
+    return v, sig * dd, True
 
 
 @jit
@@ -569,8 +591,20 @@ def stick(t, y, par, disc, hdr, smp, met, log, cnt):
         return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
     s = disc[D_PIVOT]
     log_event(log, cnt, t, EV_STICK, y[1], y[1], y[0], s)
+    sig_old = disc[D_SLIP_DIR]
     code, sig = pick_rocking(t, y, s, par, hdr, smp, True)
-    return apply_pick(code, sig, t, y, s, disc, met, log, cnt, False)
+    st = apply_pick(code, sig, t, y, s, disc, met, log, cnt, False)
+    _tdd, F, _N = stick_rock(t, y[0], y[1], s, par, hdr, smp)
+    if code == PICK_SLIP and sig == sig_old and sig == (-1 if F > 0.0 else 1):
+        # stick inadmissible and the slip goes on the same way, toward
+        # sigma1 = -sgn F_s: its sigma d'' >= 0 (the pick's proof), so sigma
+        # d' reached 0 only by rounding or an integration error below the
+        # tolerance (at mu = 1e6 the slip acceleration near N = 0 is mu
+        # times the rounding of N); the slip continues until stick is
+        # admissible (creep_margin), instead of ending again at once (a
+        # transition loop at one instant)
+        disc[D_AUX] = 2
+    return st
 
 
 @jit
