@@ -32,7 +32,14 @@ pair failed, the cell gets ``violated:<invariant>``.
 * ``mu_inf``: ``Friction(1e6)`` against no friction (friction families; the flexible one with
   ``lift_off="hold"`` and the same base mass; cells where the friction run held a lift-off are
   not comparable and skipped).  Outcome only ("slide" counts as "safe" for mu = 1e6 with a
-  residual slip below 1 um).
+  residual slip below 1 um).  The frictionless block holds its pivot bilaterally, so the two
+  agree only while its pivot force stays in the cone |F| <= 1e6 N: where it needs tension, the
+  Coulomb block slips (free corner pressed; as mu -> inf the slip tends to a finite one with
+  N -> 0) or lifts off ("stop": outcome "flight").  Friction family: a pair that still differs
+  at the tight rtol is counted under ``reported`` as ``mu_inf_tension`` (not a failure) when
+  ``mu_inf_tension`` shows, apart from the friction kernel, the frictionless pivot leaving the
+  cone and Friction(1e6) parting there; any other difference is ``violated:mu_inf`` (with a
+  given e: ``violated:mu_inf:given-e``).
 * ``tall_wall``: a wall at gap >= 2h (either side, any height) against no wall (wall family;
   README: "bit for bit").  flexible_wall: gap >= 2H (H = body.H) against the flexible kernel, the
   same *status* and max rotation to REL_EXACT (README: "step for step").  contact: gap >= 2h
