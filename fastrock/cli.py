@@ -188,12 +188,13 @@ def cmd_spectrum(args):
     n_total = len(signs) * amps.size * freqs.size
     tables = write_table(df, args)
     plt = __import__("matplotlib.pyplot").pyplot
-    fig, axes = plt.subplots(1, len(signs), figsize=(6.2 * len(signs), 4.8), squeeze=False,
+    from .plotting import describe_body
+    fig, axes = plt.subplots(1, len(signs), figsize=(6.8 * len(signs), 5.4), squeeze=False,
                              constrained_layout=True)
     for ax, s in zip(axes[0], signs):
         plot_spectrum(df[df["sign"] == s], ax=ax,
-                      title=f"{args.pulse} pulse, sign {s:+d}; alpha={body.alpha:.3f}, p={body.p:.3f}, "
-                            f"e={body.e:.3f}" + ("" if wall is None else f", wall d={wall.gap} m"))
+                      title=f"{args.pulse} pulse, sign {s:+d}" + ("" if wall is None else f", wall gap {wall.gap:g} m")
+                            + f"\n{describe_body(body)}")
         if df.attrs.get("interrupted"):   # the whole grid's axes, the cells not run left blank
             ax.set_xlim(freqs[0], freqs[-1])
             ax.set_ylim(amps[0], amps[-1])

@@ -127,6 +127,7 @@ RESULT_COLUMNS = """\
 row                   global row id (record-major order: record, body, variant, level)
 chunk                 chunk id (file results/chunk-<id>.parquet)
 record_index, record  record position in the study and its (unique) name
+polarity              sign the record ran with, +1 or -1 (Study.polarities)
 body_index, body      body position and label
 variant_index, variant  scene variant position and label ("two-sided", "wall d=0.01 m", ...)
 wall_gap              clear gap to the rear wall [m] (NaN: no wall)
@@ -187,6 +188,11 @@ class Study:
         Stop a run once its outcome is decided (as the rocking spectrum).
     unit, dt : optional
         Unit / time step for record files that do not state them.
+    polarities : tuple of +1/-1
+        Signs each record runs with: ``(1,)`` as recorded (default), ``(1, -1)`` both
+        polarities (a rocking block, and a one-sided wall above all, is not symmetric in a
+        record's sign).  Rows carry ``polarity``; both polarities of a record keep its name, so
+        the fragility bootstrap resamples records, not polarity copies.
     name : str
         Label, not part of the hash.
     run : dict
@@ -206,6 +212,7 @@ class Study:
     dt: float | None = None
     name: str = ""
     run: dict = field(default_factory=dict)
+    polarities: tuple = (1,)
 
     # ---------------------------------------------------------------- TOML
     @classmethod
@@ -250,7 +257,7 @@ class Study:
         base = Path(base)
         data = dict(data)
         known = {"name", "measure", "levels", "t_after", "early_exit", "records", "unit", "dt",
-                 "bodies", "variants", "solver", "run"}
+                 "bodies", "variants", "solver", "run", "polarities"}
         unknown = set(data) - known
         if unknown:
             raise StudyError(f"unknown study key(s) {sorted(unknown)}; known: {sorted(known)}")
@@ -331,7 +338,8 @@ class Study:
                    measure=data.get("measure", "pga"), variants=variants, solver=solver,
                    t_after=data.get("t_after", DEFAULT_T_AFTER),
                    early_exit=data.get("early_exit", True), unit=data.get("unit"),
-                   dt=data.get("dt"), name=data.get("name", name), run=run)
+                   dt=data.get("dt"), name=data.get("name", name), run=run,
+                   polarities=tuple(data.get("polarities", (1,))))
 
     # ---------------------------------------------------------- validation
     def prepare(self):
@@ -402,13 +410,26 @@ class Study:
         prep = _Prepared(records=records, bodies=bodies, body_labels=_body_labels(bodies),
                          variant_names=names, walls=walls, levels=levels, measure=self.measure,
                          solver=solver, t_after=t_after, early_exit=early_exit,
-                         specs=specs, effects=effects, y0s=y0s)
+                         specs=specs, effects=effects, y0s=y0s,
+                         polarities=_polarities(self.polarities))
         prep.hash = _study_hash(prep)
         return prep
 
     @property
     def n_runs(self):
-        return len(self.bodies) * len(self.variants) * len(self.levels) * len(self.records)
+        return (len(self.bodies) * len(self.variants) * len(self.levels) * len(self.records)
+                * len(_polarities(self.polarities)))
+
+
+def _polarities(value):
+    """The record signs of a study: a non-empty tuple of distinct +1/-1."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
+        raise StudyError(f"polarities must be a list of +1/-1, e.g. [1, -1], got {value!r}")
+    signs = tuple(value)
+    if not signs or len(set(signs)) != len(signs) or any(
+            isinstance(v, bool) or v not in (1, -1) for v in signs):
+        raise StudyError(f"polarities must be 1, -1 or both, each once, got {list(signs)!r}")
+    return tuple(int(v) for v in signs)
 
 
 @dataclass
@@ -427,6 +448,7 @@ class _Prepared:
     effects: list = field(default_factory=list)    # per variant: friction, foundation, mass
     y0s: dict = field(default_factory=dict)        # (body, variant) -> initial state
     hash: str = ""
+    polarities: tuple = (1,)
 
 
 def _levels(levels):
@@ -618,6 +640,8 @@ def _study_hash(prep):
                                             prep.effects or [{}] * len(prep.walls))],
            "levels": _canon(prep.levels), "measure": prep.measure, "solver": _canon(prep.solver),
            "t_after": repr(prep.t_after), "early_exit": prep.early_exit}
+    if prep.polarities != (1,):        # studies saved before polarities keep their hash
+        doc["polarities"] = list(prep.polarities)
     text = json.dumps(doc, sort_keys=True, separators=(",", ":"))
     return hashlib.sha256(text.encode()).hexdigest()
 
@@ -636,18 +660,23 @@ class _Plan:
     def __init__(self, prep, chunk_size):
         self.prep = prep
         self.chunk_size = int(chunk_size)
-        nr, nb, nv, nl = len(prep.records), len(prep.bodies), len(prep.walls), prep.levels.size
+        # a record slot is one record with one polarity (record-major: record, then sign)
+        npol = len(prep.polarities)
+        self.slot_record = np.repeat(np.arange(len(prep.records)), npol)
+        self.slot_sign = np.tile(np.array(prep.polarities, float), len(prep.records))
+        nr, nb, nv, nl = self.slot_record.size, len(prep.bodies), len(prep.walls), prep.levels.size
         R, B, W, Lv = (a.ravel() for a in np.meshgrid(np.arange(nr), np.arange(nb), np.arange(nv),
                                                       np.arange(nl), indexing="ij"))
         self.rec, self.body, self.var, self.lvl = R, B, W, Lv
         self.n = R.size
-        # per-record measures, computed once (mean_period is an FFT per call)
-        pga = np.array([r.pga for r in prep.records])
-        pgv = np.array([r.pgv for r in prep.records])
-        tm = np.array([r.mean_period for r in prep.records])
+        # per-slot record measures, computed once per record (mean_period is an FFT per call)
+        sr = self.slot_record
+        pga = np.array([r.pga for r in prep.records])[sr]
+        pgv = np.array([r.pgv for r in prep.records])[sr]
+        tm = np.array([r.mean_period for r in prep.records])[sr]
         self.rec_cols = {"record_pga_g": pga / G_STANDARD, "record_pgv": pgv, "mean_period": tm,
-                         "duration": np.array([r.duration for r in prep.records])}
-        self.rec_names = np.array([r.name for r in prep.records], dtype=object)
+                         "duration": np.array([r.duration for r in prep.records])[sr]}
+        self.rec_names = np.array([r.name for r in prep.records], dtype=object)[sr]
         self.body_labels = np.array(prep.body_labels, dtype=object)
         self.variant_names = np.array(prep.variant_names, dtype=object)
         alpha = np.array([b.alpha for b in prep.bodies])
@@ -664,7 +693,7 @@ class _Plan:
             scale = level * G_STANDARD / pga[R]
         elif prep.measure == "pgv":
             if (pgv == 0).any():
-                bad = [r.name for r, v in zip(prep.records, pgv) if v == 0]
+                bad = sorted({n for n, v in zip(self.rec_names, pgv) if v == 0})
                 raise StudyError(f"record(s) {bad} have PGV = 0: cannot scale to a PGV level")
             scale = level / pgv[R]
         elif prep.measure == "pga_over_g_tan_alpha":
@@ -700,7 +729,7 @@ class _Plan:
         # rows are independent, so the numbers do not depend on the order
         order = np.random.default_rng(int(chunk.id)).permutation(rows.size)
         rows = rows[order]
-        recs = list(dict.fromkeys(self.rec[rows].tolist()))
+        recs = list(dict.fromkeys(self.slot_record[self.rec[rows]].tolist()))
         local = {k: i for i, k in enumerate(recs)}
         lens = [prep.records[k].npts for k in recs]
         offsets = np.concatenate([[0], np.cumsum(lens)[:-1]]).astype(float)
@@ -711,8 +740,8 @@ class _Plan:
         HDR = np.zeros((m, L.N_EXC))
         HDR[:, L.X_KIND] = L.EXC_SAMPLED
         HDR[:, L.X_AMP] = self.scale[rows]           # SAMPLED: X_AMP is the scale factor
-        HDR[:, L.X_SIGN] = 1.0
-        ri = self.rec[rows]
+        HDR[:, L.X_SIGN] = self.slot_sign[self.rec[rows]]
+        ri = self.slot_record[self.rec[rows]]
         HDR[:, L.X_DT] = [prep.records[k].dt for k in ri]
         HDR[:, L.X_N] = [prep.records[k].npts for k in ri]
         HDR[:, L.X_DUR] = [prep.records[k].duration for k in ri]
@@ -741,8 +770,9 @@ class _Plan:
         return {
             "row": rows.astype(np.int64),
             "chunk": np.full(m, chunk.id, dtype=object),
-            "record_index": R.astype(np.int64),
+            "record_index": self.slot_record[R].astype(np.int64),
             "record": self.rec_names[R],
+            "polarity": self.slot_sign[R].astype(np.int64),
             "body_index": B.astype(np.int64),
             "body": self.body_labels[B],
             "variant_index": W.astype(np.int64),
