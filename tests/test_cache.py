@@ -15,6 +15,8 @@ import textwrap
 
 import pytest
 
+pytestmark = pytest.mark.slow          # two fresh processes, one compiling
+
 RUN = textwrap.dedent("""
     import json, sys
     import fastrock

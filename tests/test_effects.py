@@ -86,6 +86,7 @@ def probe(case, tmp_path):
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", sorted(EXPECTED))
 def test_scene_runs_and_compiles_only_its_kernel(case, tmp_path):
     kernel, effects, entry = EXPECTED[case]

@@ -74,6 +74,7 @@ def test_simulate_reports_unstable_step_with_a_stable_dt():
     assert np.isfinite(r.history[["theta", "theta_dot", "u"]].to_numpy()).all()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1])
 def test_random_fixed_step_rows_give_the_adaptive_outcome_or_fail(seed):
     """Random flexible bodies, pulses and fixed steps: a fixed-step row either

@@ -135,6 +135,7 @@ STIFF_TOL = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("impact", [I3, I1])
 @pytest.mark.parametrize("wr", STIFF)
 def test_stiff_limit_convergence(impact, wr):
@@ -151,6 +152,7 @@ def test_stiff_limit_convergence(impact, wr):
     assert row["history_err"] <= tol[3], row
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("impact", [I3, I1])
 def test_stiff_limit_effective_restitution(impact):
     """physics.md 3.5: the I3 map behaves like a rigid point-mass block with e = cos^2 a
@@ -194,6 +196,7 @@ def spectrum_mismatches(impact):
     return rows
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("impact", [I3, I1])
 def test_stiff_limit_spectrum(impact):
     """8x8 one-sine spectrum (a = 0.3, a_p/(g tan a) 1.25-6, w_p/p 0.75-8) at omega_n/p = 1000:
@@ -654,6 +657,7 @@ def _modules_after(code):
     return set(out.stdout.split())
 
 
+@pytest.mark.slow
 def test_rigid_scene_never_imports_flexible_kernel():
     mods = _modules_after(
         "import fastrock as fr\n"
@@ -665,6 +669,7 @@ def test_rigid_scene_never_imports_flexible_kernel():
     assert "fastrock.kernels.flexible" not in mods
 
 
+@pytest.mark.slow
 def test_flexible_scene_never_imports_wall_kernel():
     mods = _modules_after(
         "import fastrock as fr\n"

@@ -154,6 +154,7 @@ def test_free_motion_against_the_wall_never_gains_energy(impact, zeta, ew):
 NEAR = 0.02
 
 
+@pytest.mark.slow
 def test_stiff_pivot_switch_body_is_the_rigid_block_with_the_same_wall():
     """omega_n/p = 1000, pivot-switch (I1) ground and wall maps: the rigid block of the same
     alpha, p and outline with e = cos 2 alpha and the same wall (d = 0.2 H, e_w = 0.8), both pulse

@@ -345,6 +345,7 @@ def test_history_columns_and_forces():
     assert r.kernel == "two_spring" and r.effects == ("foundation:two-spring",)
 
 
+@pytest.mark.slow
 def test_rigid_scene_does_not_import_foundation_kernels():
     code = ("import sys, fastrock as fr\n"
             "fr.simulate(fr.RigidBlock(alpha=0.2, p=2.0), theta0=0.1, duration=0.5)\n"

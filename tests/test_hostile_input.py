@@ -831,6 +831,7 @@ PROCESS = ["spectrum-n-amp-zero", "simulate-amplitude-1e12", "record-missing-fil
            "rocking-walls-word", "spectrum-alpha-word"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", PROCESS)
 def test_cli_process_refuses(cli_files, case):
     _, argv, pattern = next(row for row in CLI if row[0] == case)

@@ -5,9 +5,12 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
+@pytest.mark.slow
 def test_import_in_the_repository_root():
     code = ("import fastrock, fastrock.kernels, fastrock.kernels.layout as L\n"
             "from fastrock.kernels import rigid\n"

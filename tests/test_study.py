@@ -189,6 +189,7 @@ def test_bad_definitions(records, tmp_path, kw, msg):
     assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.slow
 def test_unreachable_scheduler(records, tmp_path):
     pytest.importorskip("distributed")
     import socket
@@ -215,6 +216,7 @@ def client():
     cluster.close()
 
 
+@pytest.mark.slow
 def test_local_and_dask_bit_identical(records, client, tmp_path):
     variants = [{"wall": None}] + ([{"wall": Wall(0.01)}] if Wall is not None else [])
     st = _study(records, variants=variants)
@@ -225,6 +227,7 @@ def test_local_and_dask_bit_identical(records, client, tmp_path):
     assert local["outcome"].nunique() >= 2
 
 
+@pytest.mark.slow
 def test_scheduler_address(records, client, tmp_path):
     """A scheduler given by address: run_study opens (and closes) its own client."""
     st = _study(records[:2])
@@ -234,6 +237,7 @@ def test_scheduler_address(records, client, tmp_path):
     _assert_identical(local, dask)
 
 
+@pytest.mark.slow
 def test_worker_killed_mid_study(records, client, tmp_path):
     bodies = [RigidBlock.rectangle(b, 5 * b) for b in (0.15, 0.2, 0.3, 0.45)]
     st = _study(records, bodies=bodies, levels=np.linspace(0.1, 0.9, 8), t_after=10.0)

@@ -619,6 +619,7 @@ def _run_py(code):
                           timeout=600).stdout
 
 
+@pytest.mark.slow
 def test_scene_without_wall_does_not_import_the_wall_kernel():
     out = _run_py(
         "import sys, fastrock as fr\n"
@@ -629,6 +630,7 @@ def test_scene_without_wall_does_not_import_the_wall_kernel():
     assert out.split() == ["rigid", "False"]
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(os.environ.get("NUMBA_DISABLE_JIT") == "1" or os.environ.get("FASTROCK_CACHE") == "0",
                     reason="needs the on-disk cache")
 def test_wall_kernels_load_from_the_disk_cache():

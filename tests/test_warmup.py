@@ -36,6 +36,7 @@ def test_warmup_compiles_every_model():
     assert all(ready.values())
 
 
+@pytest.mark.slow
 def test_a_sweep_announces_a_first_kernel_call():
     code = ("import fastrock as fr\n"
             "fr.overturning_spectrum(fr.RigidBlock(0.2, 2.0), [1, 2, 3], [1, 2], progress=True, chunk_size=2)\n"
