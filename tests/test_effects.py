@@ -80,8 +80,10 @@ MODEL_MODULES = {"fastrock.kernels.rigid", "fastrock.kernels.flexible", "fastroc
 
 
 def probe(case, tmp_path):
+    # not in the repository root: there `python -c` imports the source tree, whose kernels a
+    # non-editable install caches apart (a compile per model); elsewhere, the installed fastrock
     out = subprocess.run([sys.executable, "-c", PROBE, case], capture_output=True, text=True,
-                         env=dict(os.environ), timeout=900)
+                         env=dict(os.environ), timeout=900, cwd=tmp_path)
     assert out.returncode == 0, out.stderr[-3000:]
     return json.loads(out.stdout.strip().splitlines()[-1])
 

@@ -28,6 +28,7 @@ import functools
 import math
 import subprocess
 import sys
+import tempfile
 import warnings
 
 import numpy as np
@@ -652,7 +653,10 @@ def test_soft_body_uplifts_below_rigid_threshold():
 def _modules_after(code):
     prog = (code + "\nimport sys\nprint(' '.join(sorted(m for m in sys.modules "
             "if m.startswith('fastrock'))))\n")
-    out = subprocess.run([sys.executable, "-c", prog], capture_output=True, text=True, timeout=600)
+    # not in the repository root: there `python -c` imports the source tree, whose kernels a
+    # non-editable install caches apart (a compile per model); elsewhere, the installed fastrock
+    out = subprocess.run([sys.executable, "-c", prog], capture_output=True, text=True, timeout=600,
+                         cwd=tempfile.gettempdir())
     assert out.returncode == 0, out.stderr
     return set(out.stdout.split())
 

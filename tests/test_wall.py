@@ -14,6 +14,7 @@ import math
 import os
 import subprocess
 import sys
+import tempfile
 
 import numpy as np
 import pandas as pd
@@ -615,7 +616,10 @@ def test_cli_wall_options(tmp_path, capsys):
 # ----------------------------------------------------------------------------------------
 def _run_py(code):
     env = dict(os.environ)
+    # not in the repository root: there `python -c` imports the source tree, whose kernels a
+    # non-editable install caches apart (a compile per model); elsewhere, the installed fastrock
     return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True,
+                          cwd=tempfile.gettempdir(),
                           timeout=600).stdout
 
 
