@@ -179,7 +179,8 @@ STATE_COLUMNS = ("theta", "theta_dot", "u", "u_dot", "d", "d_dot", "y", "y_dot")
 def _single_row(call, kw):
     import fastrock as fr
     from fastrock import foundation as F
-    from fastrock import rocking_spectrum as RS
+    import importlib
+    RS = importlib.import_module("fastrock.rocking_spectrum")   # the module: fastrock.rocking_spectrum is the function
     fn = {"simulate": fr.simulate, "simulate_foundation": F.simulate_foundation,
           "simulate_record": RS.simulate_record}[call]
     built = {k: build(v) for k, v in kw.items()}
