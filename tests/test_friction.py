@@ -783,6 +783,7 @@ def _modules_after(code):
     return set(out.stdout.split())
 
 
+@pytest.mark.slow
 def test_no_friction_never_imports_the_friction_kernel():
     mods = _modules_after(
         "import math, fastrock as fr\n"
@@ -795,6 +796,7 @@ def test_no_friction_never_imports_the_friction_kernel():
     assert "fastrock.kernels.friction" not in mods
 
 
+@pytest.mark.slow
 def test_friction_imports_the_friction_kernel():
     """Positive control of the check above."""
     mods = _modules_after(
