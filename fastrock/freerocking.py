@@ -38,6 +38,7 @@ import argparse
 import csv
 import io
 import math
+import re
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -941,6 +942,7 @@ class FreeRockingFit:
     theta0: np.ndarray = field(default_factory=lambda: np.zeros(0))
     alpha: float = float("nan")
     definition: str = "impact"
+    definition_source: str = "given"
     used: np.ndarray = field(default_factory=lambda: np.zeros(0, bool))
     params: dict = field(default_factory=dict)
     params_std: dict = field(default_factory=dict)
@@ -1007,6 +1009,8 @@ class FreeRockingFit:
         """Human-readable summary (what ``fastrock fit`` prints)."""
         lines = [f"model: {self.model} (half-cycle definition: {self.definition}, "
                  f"alpha = {np.degrees(self.alpha):.4g} deg)"]
+        if self.definition_source != "given":
+            lines.append(f"half-cycle definition: {self.definition_source}")
         for k, v in self.params.items():
             unit = " rad/s" if k == "p" else ""
             lines.append(f"{k} = {v:.6g} +/- {self.params_std.get(k, float('nan')):.2g}{unit}")
@@ -1079,9 +1083,13 @@ def _as_groups(values, name, n_groups=None, allow_nan=False):
     return out
 
 
+class DefinitionWarning(UserWarning):
+    """The half-cycle definition was not given and was chosen by the smaller residual."""
+
+
 def fit_free_rocking(half_cycle_durations, theta0, alpha, peaks=None, model="housner",
                      e0=None, p0=None, predictor=None, *, half_cycle=None,
-                     definition="impact", peak_weight=None, min_duration=None,
+                     definition=None, peak_weight=None, min_duration=None,
                      params0=None, bounds=None, max_nfev=400, xtol=1e-10, ftol=1e-14):
     """Fit ``p`` and ``e`` (or other parameters) to measured half-cycle durations.
 
@@ -1127,8 +1135,13 @@ def fit_free_rocking(half_cycle_durations, theta0, alpha, peaks=None, model="hou
         outputs are padded with 0 (the body came to rest).
     half_cycle : array_like or sequence of array_like of int, optional
         Index of each duration; default ``first, first+1, ...`` per group.
-    definition : {"impact", "peak"}
-        Half-cycle definition of the measurement (default "impact", matching Yu et al.).
+    definition : {"impact", "peak"}, optional
+        Half-cycle definition of the measurement: impact to impact or peak to peak.  It is a
+        property of how the data were measured and the fitted ``p`` differs by tens of percent
+        between the two, so give it.  Default None: both are fitted; where the indices admit
+        only one (``half_cycle`` 0 exists only for "impact") that one is used, otherwise the one
+        with the smaller RMS residual, with a :class:`DefinitionWarning` naming both residuals.
+        ``fit.definition_source`` says which rule applied.
     peak_weight : float, optional
         See above [s/rad].
     min_duration : float, optional
@@ -1158,6 +1171,12 @@ def fit_free_rocking(half_cycle_durations, theta0, alpha, peaks=None, model="hou
     """
     if not isinstance(model, str):
         raise ValueError(f"model must be a string; got {model!r}")
+    if definition is None:
+        return _fit_either_definition(
+            half_cycle_durations, theta0, alpha, peaks=peaks, model=model, e0=e0, p0=p0,
+            predictor=predictor, half_cycle=half_cycle, peak_weight=peak_weight,
+            min_duration=min_duration, params0=params0, bounds=bounds, max_nfev=max_nfev,
+            xtol=xtol, ftol=ftol)
     max_nfev = V.integer("max_nfev", max_nfev, 1, 10 ** 7)
     V.positive("xtol", xtol)
     V.positive("ftol", ftol)
@@ -1321,6 +1340,33 @@ def fit_free_rocking(half_cycle_durations, theta0, alpha, peaks=None, model="hou
         measured_peaks=meas_peaks, predicted_peaks=pred_p, nfev=nfev)
 
 
+def _fit_either_definition(*args, **kw):
+    """fit_free_rocking with the definition the data admit, or the better-fitting one."""
+    import warnings
+    fits, errors = {}, {}
+    for d in _DEFINITIONS:
+        try:
+            fits[d] = fit_free_rocking(*args, definition=d, **kw)
+        except ValueError as exc:
+            errors[d] = exc
+    if not fits:
+        raise errors["impact"]
+    if len(fits) == 1:
+        (d, fit), = fits.items()
+        fit.definition_source = f"the only one the half-cycle indices admit ({errors.popitem()[1]})"
+        return fit
+    best = min(fits, key=lambda d: fits[d].rms if np.isfinite(fits[d].rms) else np.inf)
+    other = next(d for d in fits if d != best)
+    fit = fits[best]
+    fit.definition_source = (f"not given: chosen by the smaller RMS residual ({best} "
+                             f"{fits[best].rms:.3g} s, {other} {fits[other].rms:.3g} s)")
+    warnings.warn(f"half-cycle definition not given: '{best}' fits with RMS {fits[best].rms:.3g} s, "
+                  f"'{other}' with {fits[other].rms:.3g} s (p = {fits[best].p:.4g} against "
+                  f"{fits[other].p:.4g} rad/s); say which your data use (definition=, --definition, "
+                  f"or '# definition: ...' in the CSV)", DefinitionWarning, stacklevel=3)
+    return fit
+
+
 # ----------------------------------------------------------------------------------------
 # CSV input
 # ----------------------------------------------------------------------------------------
@@ -1340,9 +1386,13 @@ def read_half_cycles_csv(path) -> pd.DataFrame:
     peak_deg      deg    optional, alternative to ``peak`` (converted to ``peak`` in rad)
     theta0_deg    deg    optional release angle; several values = several release tests
     alpha_deg     deg    optional slenderness (must be a single value)
+    definition    -      optional, "impact" or "peak" (must be a single value)
     ============= ====== ====================================================================
 
     Other columns are kept unchanged. Empty cells are allowed only in ``peak``/``peak_deg``.
+    The half-cycle definition of the data may also be stated by a comment line
+    ``# definition: impact`` (or ``peak``); it is returned in ``df.attrs["definition"]``
+    (None when the file does not say) and used by :func:`fit_from_csv`.
 
     Parameters
     ----------
@@ -1367,6 +1417,11 @@ def read_half_cycles_csv(path) -> pd.DataFrame:
         text = path.read_text()
     except UnicodeDecodeError as exc:
         raise ValueError(f"{path}: malformed CSV (not text: {exc})") from exc
+    stated = set()
+    for line in text.splitlines():
+        m = re.match(r"\s*#\s*definition\s*[:=]\s*(\S+)", line, re.IGNORECASE)
+        if m:
+            stated.add(m.group(1).strip().strip("'\"").lower())
     # ragged rows: pandas would silently turn extra fields into an index
     rows = [r for r in csv.reader(line for line in text.splitlines()
                                   if line.strip() and not line.lstrip().startswith("#"))]
@@ -1433,6 +1488,13 @@ def read_half_cycles_csv(path) -> pd.DataFrame:
     sort = [c for c in ("theta0_deg", "half_cycle") if c in df.columns]
     if sort:
         df = df.sort_values(sort, kind="stable").reset_index(drop=True)
+    if "definition" in df.columns:
+        stated |= set(df.pop("definition").astype(str).str.strip().str.lower())
+    bad = stated - set(_DEFINITIONS)
+    if bad or len(stated) > 1:
+        raise ValueError(f"{path}: definition must be one of {_DEFINITIONS} and a single value, "
+                         f"got {sorted(stated)}")
+    df.attrs["definition"] = stated.pop() if stated else None
     return df
 
 
@@ -1458,6 +1520,13 @@ def _fit_table(df: pd.DataFrame, theta0=None, alpha=None, model="housner", sourc
             raise ValueError(f"{source}: theta0 not given and no 'theta0_deg' column")
         groups = [df]
         t0s = [float(theta0)]
+    stated = df.attrs.get("definition")
+    given = options.pop("definition", None)
+    if given is not None and stated is not None and given != stated:
+        import warnings
+        warnings.warn(f"{source}: the file states half-cycles '{stated}' to '{stated}'; the given "
+                      f"definition {given!r} overrides it", DefinitionWarning, stacklevel=3)
+    options["definition"] = given or stated
     durs = [g["duration"].to_numpy(float) for g in groups]
     hcs = ([g["half_cycle"].to_numpy(int) for g in groups]
            if "half_cycle" in df.columns else None)
@@ -1696,8 +1765,9 @@ def add_fit_subcommand(subparsers):
                     help="slenderness [rad] (default: the file's alpha_deg column)")
     al.add_argument("--alpha-deg", type=float, default=None, help="the same in degrees [deg] (default: none)")
     p.add_argument("--model", default="housner", help="model (default: housner)")
-    p.add_argument("--definition", choices=_DEFINITIONS, default="impact",
-                   help="half-cycle definition of the data (default: impact)")
+    p.add_argument("--definition", choices=_DEFINITIONS, default=None,
+                   help="half-cycle definition of the data: impact to impact or peak to peak "
+                        "(default: what FILE states, else the better-fitting one, with a warning)")
     p.add_argument("--min-duration", type=float, default=None,
                    help="exclude measured durations below this [s] from the fit (default: none)")
     p.add_argument("--param", metavar="NAME=VALUE", action="append", default=[],
