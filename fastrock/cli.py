@@ -181,18 +181,20 @@ def cmd_spectrum(args):
         raise ValueError(f"--n-amp x --n-freq: {amps.size} x {freqs.size} x {len(signs)} sign(s) = "
                          f"{amps.size * freqs.size * len(signs):,} runs, more than {MAX_GRID_RUNS:,}")
     t0 = time.perf_counter()
-    df = overturning_spectrum(body, amps, freqs, sign=signs, pulse=args.pulse, wall=wall, friction=_friction(args),
+    df = overturning_spectrum(body, amps, freqs, sign=signs, pulse=args.pulse, amplitude_unit=args.amplitude_unit,
+                              frequency_unit=args.frequency_unit, wall=wall, friction=_friction(args),
                               foundation=_foundation(args, body), mass=args.mass,
                               rtol=args.rtol, atol=args.atol, dt=args.dt, progress=not args.quiet)
     el = time.perf_counter() - t0
     n_total = len(signs) * amps.size * freqs.size
     tables = write_table(df, args)
+    df = df.assign(omega_p=2 * np.pi * df["frequency_hz"])     # for a rad/s axis
     plt = __import__("matplotlib.pyplot").pyplot
     from .plotting import describe_body
     fig, axes = plt.subplots(1, len(signs), figsize=(6.8 * len(signs), 5.4), squeeze=False,
                              constrained_layout=True)
     for ax, s in zip(axes[0], signs):
-        plot_spectrum(df[df["sign"] == s], ax=ax,
+        plot_spectrum(df[df["sign"] == s], ax=ax, **_spectrum_axes(args),
                       title=f"{args.pulse} pulse, sign {s:+d}" + ("" if wall is None else f", wall gap {wall.gap:g} m")
                             + f"\n{describe_body(body)}")
         if df.attrs.get("interrupted"):   # the whole grid's axes, the cells not run left blank
@@ -205,6 +207,16 @@ def cmd_spectrum(args):
         return interrupted_exit(len(df), n_total, "runs", [args.png] + tables)
     wrote([args.png] + tables)
     return 0
+
+
+def _spectrum_axes(args):
+    """Plot the spectrum in the units its grid was given in."""
+    axes = {}
+    if args.amplitude_unit != "g_tan_alpha":
+        axes["y"] = "amplitude_g" if args.amplitude_unit == "g" else "amplitude"
+    if args.frequency_unit != "omega_p/p":
+        axes["x"] = "frequency_hz" if args.frequency_unit == "Hz" else "omega_p"
+    return axes
 
 
 def cmd_simulate(args):
@@ -250,12 +262,16 @@ def build_parser():
     s.add_argument("--pulse", default="one-sine", choices=("one-sine", "half-sine", "one-cosine"),
                    help="pulse shape (default one-sine)")
     s.add_argument("--sign", default="1", choices=("1", "-1", "both"), help="pulse sign (default +1)")
-    s.add_argument("--amp-min", type=float, default=0.5, help="smallest a_p/(g tan alpha) [-] (default 0.5)")
-    s.add_argument("--amp-max", type=float, default=8.0, help="largest a_p/(g tan alpha) [-] (default 8)")
+    s.add_argument("--amp-min", type=float, default=0.5, help="smallest amplitude [--amplitude-unit] (default 0.5)")
+    s.add_argument("--amp-max", type=float, default=8.0, help="largest amplitude [--amplitude-unit] (default 8)")
     s.add_argument("--n-amp", type=int, default=120, help="number of amplitudes (default 120)")
-    s.add_argument("--freq-min", type=float, default=0.25, help="smallest omega_p/p [-] (default 0.25)")
-    s.add_argument("--freq-max", type=float, default=10.0, help="largest omega_p/p [-] (default 10)")
+    s.add_argument("--freq-min", type=float, default=0.25, help="smallest frequency [--frequency-unit] (default 0.25)")
+    s.add_argument("--freq-max", type=float, default=10.0, help="largest frequency [--frequency-unit] (default 10)")
     s.add_argument("--n-freq", type=int, default=120, help="number of frequencies (default 120)")
+    s.add_argument("--amplitude-unit", default="g_tan_alpha", choices=("g_tan_alpha", "g", "m/s2"),
+                   help="unit of the amplitude axis (default g_tan_alpha, i.e. a_p/(g tan alpha))")
+    s.add_argument("--frequency-unit", default="omega_p/p", choices=("omega_p/p", "Hz", "rad/s"),
+                   help="unit of the frequency axis (default omega_p/p)")
     _add_solver_options(s)
     add_output_options(s, png="spectrum.png", csv="spectrum.csv", figure="the spectrum figure",
                        table="the table of runs")

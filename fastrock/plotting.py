@@ -62,7 +62,8 @@ def plot_spectrum(df, ax=None, x="frequency_ratio", y="amplitude_ratio", title=N
     else:
         ax.text(0.5, 0.5, "no run finished", transform=ax.transAxes, ha="center", va="center")
     labels = {"frequency_ratio": r"$\omega_p/p$ [-]", "amplitude_ratio": r"$a_p/(g\tan\alpha)$ [-]",
-              "frequency_hz": "f [Hz]", "amplitude_g": "A [g]"}
+              "frequency_hz": "f [Hz]", "amplitude_g": "A [g]", "omega_p": r"$\omega_p$ [rad/s]",
+              "amplitude": r"$a_p$ [m/s$^2$]"}
     ax.set_xlabel(labels.get(x, x))
     ax.set_ylabel(labels.get(y, y))
     if title:

@@ -80,20 +80,26 @@ def _signs(sign):
 def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, pulse="one-sine",
                          wall=None, friction=None, foundation=None, mass=1.0, vertical=None, solver=None,
                          rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
-                         early_exit=True, chunk_size=None, progress=True, boundary_check=False):
+                         early_exit=True, chunk_size=None, progress=True, boundary_check=False,
+                         amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p", kind=None):
     """Overturning spectrum of a body under pulses, in parallel.
 
     Parameters
     ----------
     body : RigidBlock
     amplitude_ratios : array
-        a_p / (g tan alpha) values.
+        a_p / (g tan alpha) values, or amplitudes in ``amplitude_unit``.
     frequency_ratios : array
-        omega_p / p values (> 0).
+        omega_p / p values (> 0), or frequencies in ``frequency_unit``.
     sign : +1, -1, "both" or list
         Pulse sign(s); a_g = sign * a_p * sin(omega_p t).
     pulse : str
-        "one-sine" (default), "half-sine", "one-cosine".
+        "one-sine" (default), "half-sine", "one-cosine"; ``kind`` is the same option under
+        the name :class:`Pulse` gives it (give one of them).
+    amplitude_unit, frequency_unit : str
+        Units of the two axes, as in :class:`Pulse`: "g_tan_alpha" (default), "g" or
+        "m/s2"; "omega_p/p" (default), "Hz" or "rad/s".  The table always holds both the
+        ratios and the physical values (amplitude_g, frequency_hz).
     wall : Wall, optional
     friction : Friction, optional
         Adds the outcome "slide" and the columns max_slide, residual_slide [m].
@@ -125,7 +131,13 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     DataFrame, one row per run; columns in ``SPECTRUM_COLUMNS``.
     """
     solver = make_solver(solver, rtol, atol, dt)
+    if kind is not None:
+        if pulse != "one-sine" and pulse != kind:
+            raise ValueError(f"give the pulse shape once: kind={kind!r} and pulse={pulse!r}")
+        pulse = kind
     V.choice("pulse", pulse, ("one-sine", "half-sine", "one-cosine"))
+    V.choice("amplitude_unit", amplitude_unit, X.AMPLITUDE_UNITS)
+    V.choice("frequency_unit", frequency_unit, X.FREQUENCY_UNITS)
     early_exit = V.boolean("early_exit", early_exit)
     boundary_check = V.boolean("boundary_check", boundary_check)
     if chunk_size is not None:
@@ -134,6 +146,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     freqs = _grid(frequency_ratios, "frequency_ratios")
     if (freqs <= 0).any():
         raise ValueError("frequency_ratios must be > 0")
+    amps, freqs = _to_ratios(body, amps, freqs, amplitude_unit, frequency_unit)
     spec = models.select(body, wall, friction, foundation, V.positive("mass", mass))
     vertical = X.as_excitation(vertical, "vertical")
     signs = _signs(sign)
@@ -195,13 +208,15 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     if solver.dt:
         warn_unstable(status[:done], MET[:done], solver.dt)
     df.attrs.update(interrupted=done < n, kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e,
-                    pulse=pulse, solver=solver.name)
+                    pulse=pulse, solver=solver.name, amplitude_unit=amplitude_unit,
+                    frequency_unit=frequency_unit)
     if boundary_check:
         import dataclasses
         half = (dataclasses.replace(solver, dt=solver.dt / 2) if solver.dt else
                 dataclasses.replace(solver, rtol=solver.rtol / 2,
                                     atol=(solver.atol if solver.atol is not None else solver.rtol * 1e-2) / 2))
-        df2 = overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign, pulse=pulse, wall=wall,
+        df2 = overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign, pulse=pulse,
+                                   amplitude_unit=amplitude_unit, frequency_unit=frequency_unit, wall=wall,
                                    friction=friction, foundation=foundation, mass=mass, vertical=vertical,
                                    solver=half, t_after=t_after, early_exit=early_exit,
                                    chunk_size=chunk_size, progress=progress)
@@ -210,6 +225,14 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         df["boundary"] = df["outcome"].to_numpy() != df2["outcome"].to_numpy()[:m]
         df.attrs["interrupted"] = df.attrs["interrupted"] or df2.attrs["interrupted"]
     return df
+
+
+def _to_ratios(body, amps, freqs, amplitude_unit, frequency_unit):
+    """Axes in the literature's ratios a_p/(g tan alpha) and omega_p/p from the given units."""
+    uplift = body.g * np.tan(body.alpha)
+    amps = {"g_tan_alpha": amps, "g": amps * X.G_STANDARD / uplift, "m/s2": amps / uplift}[amplitude_unit]
+    freqs = {"omega_p/p": freqs, "Hz": 2 * np.pi * freqs / body.p, "rad/s": freqs / body.p}[frequency_unit]
+    return amps, freqs
 
 
 def _add_results(df, status, MET, body, wall=None, friction=None):

@@ -63,3 +63,31 @@ def test_rectangle_takes_full_dimensions_by_keyword():
 def test_rectangle_dimensions_are_validated_by_name(kw, field):
     with pytest.raises(ValueError, match=field):
         RigidBlock.rectangle(**kw)
+
+
+def test_spectra_take_physical_axes_as_well_as_ratios():
+    import numpy as np
+    block = RigidBlock.rectangle(0.2, 1.0)
+    amps_g, f_hz = np.array([0.1, 0.3, 0.6]), np.array([0.5, 1.0, 2.0])
+    phys = fastrock.overturning_spectrum(block, amps_g, f_hz, amplitude_unit="g", frequency_unit="Hz",
+                                         progress=False)
+    ratios = fastrock.overturning_spectrum(block, amps_g * fastrock.G_STANDARD / (block.g * math.tan(block.alpha)),
+                                           2 * math.pi * f_hz / block.p, progress=False)
+    assert list(phys.outcome) == list(ratios.outcome)
+    np.testing.assert_allclose(phys.max_rotation_ratio, ratios.max_rotation_ratio, rtol=1e-12)
+    np.testing.assert_allclose(np.sort(phys.amplitude_g.unique()), amps_g, rtol=1e-14)
+    np.testing.assert_allclose(np.sort(phys.frequency_hz.unique()), f_hz, rtol=1e-14)
+    rad = fastrock.overturning_spectrum(block, amps_g * fastrock.G_STANDARD, 2 * math.pi * f_hz,
+                                        amplitude_unit="m/s2", frequency_unit="rad/s", progress=False)
+    assert list(rad.outcome) == list(ratios.outcome)
+    with pytest.raises(ValueError, match="amplitude_unit"):
+        fastrock.overturning_spectrum(block, [1.0], [1.0], amplitude_unit="furlong")
+
+
+def test_the_pulse_shape_is_kind_as_in_pulse():
+    block = RigidBlock(0.2, 2.0)
+    a = fastrock.overturning_spectrum(block, [2.0, 4.0], [1.0, 3.0], kind="half-sine", progress=False)
+    b = fastrock.overturning_spectrum(block, [2.0, 4.0], [1.0, 3.0], pulse="half-sine", progress=False)
+    assert list(a.outcome) == list(b.outcome) and a.attrs["pulse"] == "half-sine"
+    with pytest.raises(ValueError, match="once"):
+        fastrock.overturning_spectrum(block, [2.0], [1.0], kind="half-sine", pulse="one-cosine")
