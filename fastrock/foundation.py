@@ -42,6 +42,7 @@ import pandas as pd
 from . import _validate as V
 from . import excitation as X
 from .bodies import RigidBlock
+from .freerocking import get_predictor, half_cycles, register_predictor, rocking_quarter_period
 from .constants import G_STANDARD
 from .outcomes import outcome_of, status_of
 from .simulate import SimulationResult, _ground_at, events_frame, metrics_dict, run_inputs
@@ -447,7 +448,6 @@ def foundation_half_cycles(result, definition="impact", **kw):
     crossings are events, so their times are exact. Works for :func:`simulate_foundation`
     results and for :func:`fastrock.simulate` (rigid: every half-cycle is "rocking").
     """
-    from .freerocking import half_cycles
     h = result.history
     t = h["t"].to_numpy()
     th = h["theta"].to_numpy()
@@ -580,7 +580,6 @@ def make_predictor(model, body=None, mass=1.0, *, inertia_ratio=0.75, g=G_STANDA
     return_peaks = V.boolean("return_peaks", return_peaks)
 
     def predictor(params, n):
-        from .freerocking import half_cycles, rocking_quarter_period
         blk, M = _predictor_body(params, body, mass, inertia_ratio, g)
         fnd = _predictor_foundation(model, params, blk, M)
         theta0 = float(params["theta0"])
@@ -614,13 +613,5 @@ two_spring_predictor.__doc__ = ("Default two-spring predictor for fit_free_rocki
 switching_predictor = make_predictor("switching")
 switching_predictor.__doc__ = ("Default switching predictor for fit_free_rocking: "
                                "make_predictor('switching') (see there for the parameters).")
-_PREDICTORS = {"two-spring": two_spring_predictor, "switching": switching_predictor}
-
-
-def get_predictor(model):
-    """The built-in predictor of a foundation model name ("two-spring", "switching")."""
-    if model not in _PREDICTORS:
-        raise NotImplementedError(f"unknown model {model!r}: built in are 'housner', "
-                                  f"{', '.join(repr(m) for m in PREDICTOR_MODELS)}; pass a "
-                                  f"predictor callable to fit other models")
-    return _PREDICTORS[model]
+register_predictor("two-spring", two_spring_predictor)
+register_predictor("switching", switching_predictor)

@@ -1083,6 +1083,29 @@ def _as_groups(values, name, n_groups=None, allow_nan=False):
     return out
 
 
+#: Built-in predictors of fit_free_rocking's models other than "housner", by name; the models
+#: that provide them register here (fastrock.foundation: "two-spring", "switching"), so that this
+#: module does not import them.
+_PREDICTORS = {}
+
+
+def register_predictor(model, predictor):
+    """Make ``predictor(params, n)`` the built-in predictor of ``model`` for fit_free_rocking."""
+    if not isinstance(model, str) or model == "housner" or not callable(predictor):
+        raise ValueError(f"register_predictor needs a model name other than 'housner' and a "
+                         f"callable, got {model!r}, {predictor!r}")
+    _PREDICTORS[model] = predictor
+
+
+def get_predictor(model):
+    """The built-in predictor of a model name (e.g. "two-spring", "switching")."""
+    if model not in _PREDICTORS:
+        raise NotImplementedError(f"unknown model {model!r}: built in are 'housner', "
+                                  f"{', '.join(repr(m) for m in _PREDICTORS)}; pass a "
+                                  f"predictor callable to fit other models")
+    return _PREDICTORS[model]
+
+
 class DefinitionWarning(UserWarning):
     """The half-cycle definition was not given and was chosen by the smaller residual."""
 
@@ -1181,8 +1204,7 @@ def fit_free_rocking(half_cycle_durations, theta0, alpha, peaks=None, model="hou
     V.positive("xtol", xtol)
     V.positive("ftol", ftol)
     if predictor is None and model != "housner":
-        from .foundation import get_predictor     # raises NotImplementedError if unknown
-        predictor = get_predictor(model)
+        predictor = get_predictor(model)          # raises NotImplementedError if unknown
     first = _first_index(definition)
     alpha = float(_check_alpha(alpha))
     durs = _as_groups(half_cycle_durations, "half_cycle_durations")
