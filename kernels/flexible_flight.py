@@ -122,7 +122,7 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground
-from .flexible import base_inertia, positions, track_u
+from .flexible import track_u
 from .flexible_friction import after_step as ff_after_step
 from .flexible_friction import event as ff_event
 from .flexible_friction import init_state as ff_init_state
@@ -131,7 +131,7 @@ from .flexible_friction import transition as ff_transition
 from .flexible_friction import (C_SLIP_STICK, C_UPLIFT, N_RELOAD, R_IMPACT,
                                 R_LIFT_OFF, R_SLIP_STICK,
                                 set_mode, slip_rock, start_from_flat,
-                                start_slip_rock, stick_rock)
+                                start_slip_rock, stick_rock, stop_slip)
 from .friction import routh_general, track_slide
 from .hybrid import (C_NHIST, MAX_ZERO_LENGTH, book_time, check_energy,
                      final_status, init_metrics, integrate_hybrid,
@@ -423,29 +423,6 @@ def start_flight(t, y, par, disc, met):
 
 
 @jit
-def stop_slip(y, s, par):
-    """Stop the pivot's slip by a plastic horizontal impulse at the pivot
-    (contact coordinates on s): q'+ = q'- + M^-1 e_d lambda with d'+ = 0,
-    the kinetic-metric projection onto d' = 0 (it only dissipates)."""
-    H = par[F_H]
-    mb = par[F_MB]
-    r = y[0] - s * par[F_B]
-    c = math.cos(y[2])
-    _X, Y, _Xb, Yb = positions(r, c, math.sin(y[2]), s, par)
-    m22 = r * r + base_inertia(par) + H * H
-    yc = Y + mb * Yb
-    # M z = e_d, M = [[1, H, c], [H, m22, yc], [c, yc, 1 + mb]]
-    zu = H * yc - m22 * c
-    zt = H * c - yc
-    zd = m22 - H * H
-    det = c * zu + yc * zt + (1.0 + mb) * zd
-    lam = -y[5] * det / zd
-    y[1] += zu / det * lam
-    y[3] += zt / det * lam
-    y[5] = 0.0
-
-
-@jit
 def stop_slip_and_pick(t, y, par, disc, hdr, smp, met, log, cnt):
     """flexible_friction left the base slipping where it cannot: mu_s = inf
     (its impact keeps d'+ = d'- + h_b theta'-, nonzero for h_b != 0), or
@@ -454,7 +431,7 @@ def stop_slip_and_pick(t, y, par, disc, hdr, smp, met, log, cnt):
     stops by a plastic horizontal impulse at the base (the kinetic-metric
     projection onto d' = 0), and the mode is picked again."""
     if disc[D_MODE] == MODE_SLIDE_ROCK:
-        stop_slip(y, disc[D_PIVOT], par)
+        stop_slip(t, y, disc[D_PIVOT], par, met)
         set_mode(disc, MODE_ROCK, disc[D_PIVOT], 0)
         return RUNNING
     # full contact, (u, d) with M = [[1, 1], [1, 1 + mb]]: the mass keeps
@@ -482,7 +459,7 @@ def fly_slip_or_jam(t, y, s, a_min, try_slip, par, disc, hdr, smp, met, log,
                            False) == RUNNING:
             return RUNNING
     if y[5] != 0.0:
-        stop_slip(y, s, par)
+        stop_slip(t, y, s, par, met)
     set_mode(disc, MODE_ROCK, s, 0)
     disc[D_AUX] = JAM
     log_event(log, cnt, t, EV_LIFT_OFF_HELD, y[3], y[3], y[2], s)

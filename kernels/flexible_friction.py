@@ -42,7 +42,7 @@ from .flexible import (F_ALPHA, F_B, F_G, F_H, F_HB, F_MB, F_THETA_OVER, F_WN,
 from .friction import initial_contact, track_slide
 from .hybrid import (book_time, check_energy, final_status, integrate_hybrid,
                      log_event, sweep_rows)
-from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
+from .layout import (D_AUX, D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_IMPACT, EV_LIFT_OFF_HELD, EV_RELOAD, EV_SLIP, EV_STICK,
                      EV_UPLIFT, FAIL_INCONSISTENT, FLIGHT, MODE_REST,
                      MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK, M_IMPACTS,
@@ -124,9 +124,14 @@ def stick_rock(t, y, s, par, hdr, smp):
 def slip_rock(t, y, s, sigma, par, hdr, smp):
     """(u'', theta'', d'', N) per unit mass, rocking on s and slipping
     toward sigma with F = -mu_k sigma N (Cramer's rule on the 3x3)."""
+    return slip_rock_k(t, y, s, par[F_MU_K] * sigma, par, hdr, smp)
+
+
+@jit
+def slip_rock_k(t, y, s, k, par, hdr, smp):
+    """``slip_rock`` with F = -k N (k = 0: the frictionless pivot)."""
     ag, G, c, sn, Xc, Yc, fu, ft, m22, n0, fd = rows(t, y, s, par, hdr, smp)
     H = par[F_H]
-    k = par[F_MU_K] * sigma
     a31 = c - k * sn
     a32 = Yc - k * Xc
     a33 = 1.0 + par[F_MB]
@@ -197,6 +202,105 @@ def slide_uplift_margin(t, y, sigma, par, hdr, smp):
 
 
 @jit
+def normal_margins(t, y, s, par, hdr, smp):
+    """(A, nF) on pivot s: A = N of the frictionless pivot (F = 0), which
+    has the sign of the free pivot's normal acceleration into the ground
+    (> 0: pressed; flight is consistent iff A <= 0), and nF = dN/dF with
+    the normal constraint kept.  With W the pivot's contact-space inverse
+    inertia (positive definite), A = A_W / w_nn and nF = -w_tn / w_nn, so
+    the slip toward sigma (F = -mu_k sigma N) has N = A / D(sigma) with
+    D(sigma) = 1 + mu_k sigma nF = (w_nn - mu_k sigma w_tn) / w_nn: the
+    A and D of kernels/friction.py (its docstring's proof holds for any
+    positive definite W)."""
+    _ag, _G, c, sn, Xc, Yc, _fu, _ft, m22, _n0, _fd = rows(t, y, s, par,
+                                                             hdr, smp)
+    H = par[F_H]
+    _u, _t, _d, A = slip_rock_k(t, y, s, 0.0, par, hdr, smp)
+    # M^-1 e_d (e_d: the slip row), as in stop_slip
+    zu = H * Yc - m22 * c
+    zt = H * c - Yc
+    zd = m22 - H * H
+    det = c * zu + Yc * zt + (1.0 + par[F_MB]) * zd
+    return A, -(sn * zu + Xc * zt) / det
+
+
+# outcomes of pick_rocking
+PICK_ROCK = 0
+PICK_SLIP = 1
+PICK_FLIGHT = 2
+PICK_JAM = 3
+# disc[D_AUX] in SLIDE_ROCK: a slip continued at zero slip speed (``stick``)
+CREEP = 2
+
+
+@jit
+def pick_rocking(t, y, s, par, hdr, smp, allow_stick):
+    """Contact mode of pivot s at zero slip velocity (kernels/friction.py's
+    rule, by the signs of A and D alone): stick (if allowed), the slip
+    toward sigma1 = -sgn F_s (consistent iff D(sigma1) > 0 and A >= 0),
+    the slip toward -sigma1, flight (A <= 0; with lift_off "hold" the held
+    frictionless pivot, whose N = A is then <= 0), else a jam (only
+    rounding at these boundaries leaves none).  Returns (PICK_*, sigma)."""
+    _u, _t, F, N = stick_rock(t, y, s, par, hdr, smp)
+    if allow_stick and N >= 0.0 and abs(F) <= par[F_MU_S] * N:
+        return PICK_ROCK, 0
+    mu_k = par[F_MU_K]
+    A, nF = normal_margins(t, y, s, par, hdr, smp)
+    sig1 = -1 if F > 0.0 else 1
+    D1 = 1.0 + mu_k * sig1 * nF
+    if D1 > 0.0 and A >= 0.0:
+        return PICK_SLIP, sig1
+    D2 = 1.0 - mu_k * sig1 * nF
+    if D2 != 0.0 and A * D2 >= 0.0 and (abs(F) + mu_k * N) * D2 <= 0.0:
+        return PICK_SLIP, -sig1
+    if A <= 0.0:
+        return PICK_FLIGHT, 0
+    return PICK_JAM, 0
+
+
+@jit
+def stop_slip(t, y, s, par, met):
+    """Tangential impact without collision at the slipping pivot s
+    (Painleve's dynamic jam, kernels/friction.py): a plastic horizontal
+    impulse at the pivot stops the slip, q'+ = q'- + M^-1 e_d lambda with
+    d'+ = 0, the kinetic-metric projection onto d' = 0 (the normal impulse
+    is the constraint's; it only dissipates)."""
+    before = kinetic(y, s, par)
+    H = par[F_H]
+    mb = par[F_MB]
+    r = y[0] - s * par[F_B]
+    c = math.cos(y[2])
+    _X, Y, _Xb, Yb = positions(r, c, math.sin(y[2]), s, par)
+    m22 = r * r + base_inertia(par) + H * H
+    yc = Y + mb * Yb
+    # M z = e_d, M = [[1, H, c], [H, m22, yc], [c, yc, 1 + mb]]
+    zu = H * yc - m22 * c
+    zt = H * c - yc
+    zd = m22 - H * H
+    det = c * zu + yc * zt + (1.0 + mb) * zd
+    lam = -y[5] * det / zd
+    y[1] += zu / det * lam
+    y[3] += zt / det * lam
+    y[5] = 0.0
+    check_energy(before, kinetic(y, s, par), met)
+
+
+@jit
+def creep_margin(t, y, s, sig, dd, par, hdr, smp):
+    """Stick event of a slip continued at zero slip speed (D_AUX = CREEP,
+    ``stick``): > 0 while sigma d' > 0 or stick is still inadmissible with
+    the stick force against sigma (then sigma d'' >= 0 exactly, so a
+    sigma d' below 0 is rounding; physics.md 4.5), as kernels/friction.py."""
+    _u, _t, F, N = stick_rock(t, y, s, par, hdr, smp)
+    v = sig * y[5]
+    if (-1 if F > 0.0 else 1) == sig:
+        ex = abs(F) - par[F_MU_S] * N
+        if ex > v:
+            return ex, 0.0, True
+    return v, sig * dd, True
+
+
+@jit
 def event(k, t, y, par, disc, hdr, smp):
     mode = disc[D_MODE]
     s = disc[D_PIVOT]
@@ -253,6 +357,8 @@ def event(k, t, y, par, disc, hdr, smp):
         if k == R_SLIP_STICK:
             if sig == 0:
                 return np.inf, 0.0, True
+            if disc[D_AUX] == CREEP:
+                return creep_margin(t, y, s, sig, dd, par, hdr, smp)
             return sig * y[5], sig * dd, True
         if k == R_LIFT_OFF and sig == 0:
             # unloaded: contact returns; the band between N_LIFT and
@@ -277,6 +383,7 @@ def set_mode(disc, mode, s, sigma):
     disc[D_STATIC] = 0
     disc[D_PIVOT] = s
     disc[D_SLIP_DIR] = sigma
+    disc[D_AUX] = 0
 
 
 @jit
@@ -320,7 +427,42 @@ def start_slip_rock(t, y, s, F, par, disc, hdr, smp, met, log, cnt,
             log_event(log, cnt, t, EV_SLIP, y[3], y[3], y[2], sigma)
             return RUNNING
         sigma = -sigma
+    # neither slip passes the computed test: the pick by the signs of A
+    # and D (a Painleve slip onset lifts off, physics.md 4.6)
+    code, sig = pick_rocking(t, y, s, par, hdr, smp, False)
+    return apply_pick(code, sig, t, y, s, par, disc, met, log, cnt)
+
+
+@jit
+def apply_pick(code, sig, t, y, s, par, disc, met, log, cnt):
+    """Enter the mode chosen by pick_rocking on pivot s (flight: lift_off,
+    which stops or holds the pivot; a jam, left only by rounding, ends
+    the run FAIL_INCONSISTENT)."""
+    if code == PICK_ROCK:
+        set_mode(disc, MODE_ROCK, s, 0)
+        return RUNNING
+    if code == PICK_SLIP:
+        met[M_T_SLIP_START] = t
+        set_mode(disc, MODE_SLIDE_ROCK, s, sig)
+        log_event(log, cnt, t, EV_SLIP, y[3], y[3], y[2], sig)
+        return RUNNING
+    if code == PICK_FLIGHT:
+        return lift_off(t, y, s, par, disc, met, log, cnt)
     return FAIL_INCONSISTENT
+
+
+@jit
+def tangential_impact(t, y, s, par, disc, hdr, smp, met, log, cnt):
+    """The slip on pivot s has no consistent continuation with the pivot
+    pressed (A > 0, D(sigma) <= 0: Painleve): stop it by a tangential
+    impact (``stop_slip``, logged as a stick), then pick the mode at zero
+    slip velocity, where one is always consistent."""
+    pre = y[3]
+    stop_slip(t, y, s, par, met)
+    met[M_N_STICK_SLIP] += 1
+    log_event(log, cnt, t, EV_STICK, pre, y[3], y[2], s)
+    code, sig = pick_rocking(t, y, s, par, hdr, smp, True)
+    return apply_pick(code, sig, t, y, s, par, disc, met, log, cnt)
 
 
 @jit
@@ -406,9 +548,20 @@ def stick(t, y, par, disc, hdr, smp, met, log, cnt):
     if abs(F) <= par[F_MU_S] * N:
         set_mode(disc, MODE_ROCK, s, 0)
         return RUNNING
+    sig_old = disc[D_SLIP_DIR]
+    code, sig = pick_rocking(t, y, s, par, hdr, smp, False)
+    if code == PICK_SLIP and sig == sig_old and sig == (-1 if F > 0.0 else 1):
+        # stick inadmissible and the slip goes on the same way, toward
+        # sigma1 = -sgn F_s: its sigma d'' >= 0 (the pick's proof), so
+        # sigma d' reached 0 by rounding or an integration error below the
+        # tolerance; the slip continues until stick is admissible
+        # (creep_margin; physics.md 4.5), instead of ending again at once
+        set_mode(disc, MODE_SLIDE_ROCK, s, sig)
+        disc[D_AUX] = CREEP
+        return RUNNING
     if t == met[M_T_SLIP_START]:
         # the slip just started cannot develop and stick cannot hold
-        return FAIL_INCONSISTENT
+        return apply_pick(code, sig, t, y, s, par, disc, met, log, cnt)
     return start_slip_rock(t, y, s, F, par, disc, hdr, smp, met, log, cnt)
 
 
@@ -419,8 +572,15 @@ def reload(t, y, par, disc, hdr, smp, met, log, cnt):
     s = disc[D_PIVOT]
     log_event(log, cnt, t, EV_RELOAD, y[3], y[3], y[2], s)
     if y[5] != 0.0:
-        set_mode(disc, MODE_SLIDE_ROCK, s, 1 if y[5] > 0.0 else -1)
-        return RUNNING
+        sig = 1 if y[5] > 0.0 else -1
+        _u, _t, _d, N = slip_rock(t, y, s, sig, par, hdr, smp)
+        if N > 0.0:
+            set_mode(disc, MODE_SLIDE_ROCK, s, sig)
+            return RUNNING
+        # the pressed pivot (A > 0: it reloaded) cannot slip on with N > 0
+        # (D(sigma) < 0, Painleve at a slip speed)
+        return tangential_impact(t, y, s, par, disc, hdr, smp, met, log,
+                                 cnt)
     _u, _t, F, N = stick_rock(t, y, s, par, hdr, smp)
     if abs(F) <= par[F_MU_S] * N:
         set_mode(disc, MODE_ROCK, s, 0)
@@ -520,6 +680,13 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     if k == R_LIFT_OFF:
         if disc[D_SLIP_DIR] == 0 and mode == MODE_SLIDE_ROCK:
             return reload(t, y, par, disc, hdr, smp, met, log, cnt)
+        if mode == MODE_SLIDE_ROCK:
+            A, _nF = normal_margins(t, y, s, par, hdr, smp)
+            if A > N_LIFT * (1.0 + par[F_MB]) * par[F_G]:
+                # N = A / D changed sign through D = 0 with the pivot
+                # pressed: Painleve's dynamic jam, not a lift-off
+                return tangential_impact(t, y, s, par, disc, hdr, smp, met,
+                                         log, cnt)
         return lift_off(t, y, s, par, disc, met, log, cnt)
     if k == R_SLIP_STICK:
         if mode == MODE_ROCK:
