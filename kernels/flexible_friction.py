@@ -677,6 +677,9 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return RUNNING
     book_time(t, disc, met)
     track_slide(y[4], met)
+    # the state at an event counts (a lift-off with lift_off "stop" ends
+    # the run here, after the last step's state)
+    track_rotation(y[2], met)
     if k == R_LIFT_OFF:
         if disc[D_SLIP_DIR] == 0 and mode == MODE_SLIDE_ROCK:
             return reload(t, y, par, disc, hdr, smp, met, log, cnt)

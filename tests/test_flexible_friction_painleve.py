@@ -205,3 +205,19 @@ def test_former_painleve_failures_end_definite_and_converged(batch, key, variant
     assert not run.status.startswith("failed"), (was, run.status)
     tight, *_ = fz._simulate_cell(P, key, "tight" if variant is None else variant)
     assert run.outcome == tight.outcome
+
+
+def test_max_rotation_counts_the_state_at_the_lift_off():
+    """lift_off "stop" ends the run at the located lift-off; its rotation counts in max_rotation
+    (it used to stop at the last step before the event: 0.5143 rad here against |theta| = 0.5153
+    at the lift-off, frozen grid flexible_friction-stop-mu0.6-0.5-one-sine, row 7)."""
+    from fastrock import Pulse, simulate
+    b = FlexibleBody(alpha=0.3, p=2.0, omega_n_over_p=9.0, zeta=0.05)
+    run = simulate(b, Pulse(9.5, 0.6, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p"),
+                   friction=Friction(0.6, 0.5))
+    assert run.status == "flight"
+    ev = run.events
+    th = abs(float(ev[ev["event"] == "flight"]["theta"].iloc[-1]))
+    assert run.metrics["max_rotation"] == pytest.approx(max(th, float(np.abs(run.history["theta"]).max())),
+                                                        rel=1e-12)
+    assert run.metrics["max_rotation"] >= th
