@@ -127,3 +127,17 @@ def test_mu_inf_difference_explained_only_by_the_frictionless_pivot_tension():
 def fuzz_pulse_of(P, key):
     a, f, s = key
     return fr.Pulse(a, f, s, P["pulse"], amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+
+
+def test_unstable_step_reported_only_where_the_named_step_is_stable():
+    """flexible_friction: failed:unstable-step counts as a numerical limit the user set only when
+    simulate's warning names a stable step and the cell ends definite at it.
+    flexible_friction:2026:43 (omega_n/p = 141, default base mass 0.1, Friction(0.826, 0.525,
+    hold), fixed dt = 2 pi/omega_n/61.8 = 3.08e-4 s): the held lift-offs slide the light base,
+    a mode about sqrt(1.1/0.1) = 3.3 times stiffer than omega_n; the error names dt <= 1.53e-4 s,
+    where the cell overturns.  A cell that ends definite is never reported."""
+    P = fuzz.draw_batch("flexible_friction", 2026, 43)
+    why = fuzz.unstable_step_named(P, (29.419982, 2.262058, 1))
+    assert why is not None and "dt <= 0.000153 s" in why and "ends overturn" in why, why
+    P = fuzz.draw_batch("flexible_friction", 2026, 17)
+    assert fuzz.unstable_step_named(P, (17.284316, 0.706193, 1)) is None
