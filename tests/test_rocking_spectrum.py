@@ -478,13 +478,16 @@ def test_plot_marks_bounds_hollow(small_study):
     table, _ = small_study
     fig = plot_rocking_spectrum(table)
     ax = fig.axes[0]
-    labels = [ln.get_label() for ln in ax.lines]
-    assert any("1.35" in lab for lab in labels)
-    for ln in ax.lines:
-        if "bound" in ln.get_label():
-            assert ln.get_markerfacecolor() == "none"
-        elif ln.get_label() == "two-sided":
-            assert ln.get_markerfacecolor() != "none"
+    legend = ax.get_legend()
+    labels = [t.get_text() for t in legend.get_texts()]
+    assert any("Maiorano" in lab and "1.35" in lab for lab in labels)     # the bound is named
+    for h in legend.legend_handles:                    # censored points hollow, the others filled
+        if h.get_marker() not in (None, "None", ""):
+            hollow = h.get_markerfacecolor() in ("white", "none", (1.0, 1.0, 1.0, 1.0))
+            assert hollow == h.get_label().startswith("censored"), h.get_label()
+    censored = table["beta_bound"].isin(["upper", "lower"])
+    points = [ln for ln in ax.lines if ln.get_linestyle() == "None"]
+    assert sum(ln.get_markerfacecolor() == "white" for ln in points) >= (1 if censored.any() else 0)
 
 
 # ----------------------------------------------------- CLI
