@@ -197,10 +197,15 @@ def _fuzz():
     # Friction(1e6), hold: Painleve slip onset (the mu_inf check run, failed:inconsistent-contact)
     (36, (34.685429, 0.255194, 1), "mu_inf", "failed:inconsistent-contact"),
     (6, (27.837103, 0.472021, 1), "mu_inf", "failed:inconsistent-contact"),
+    # hold, mu_s 1.75, h_b = 2.08: a slip onset with D(sigma1) < 0 and A < 0 (N = A / D > 0 and
+    # d'' = 0 passed the old test), slip/stick at one instant (failed:transition-loop, early exit)
+    (110, (5.829471625780531, 0.19309077676424508, 1), None, "failed:transition-loop"),
 ])
 def test_former_painleve_failures_end_definite_and_converged(batch, key, variant, was):
     fz = _fuzz()
     P = fz.draw_batch("flexible_friction", 2026, batch)
+    run, *_ = fz._simulate_cell(P, key, variant, early_exit=True)
+    assert not run.status.startswith("failed"), (was, run.status)
     run, *_ = fz._simulate_cell(P, key, variant)
     assert not run.status.startswith("failed"), (was, run.status)
     tight, *_ = fz._simulate_cell(P, key, "tight" if variant is None else variant)
