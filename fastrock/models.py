@@ -115,7 +115,8 @@ def _rectangle(body):
 
 def contact_par(body: RigidBlock, friction, wall=None):
     """Parameters of the contact model (kernels/contact.py): a symmetric block whose base
-    corners touch the ground with ``friction`` (mu_s may be inf), and a tall frictionless wall."""
+    corners touch the ground with ``friction`` (mu_s may be inf), and a tall wall (its Coulomb
+    coefficient ``wall.friction``, 0: frictionless)."""
     from fastrock.kernels import layout as K
     par = np.zeros(K.N_PAR_CONTACT)
     par[: K.N_PAR_RIGID] = rigid_par(body)
@@ -135,9 +136,6 @@ def contact_par(body: RigidBlock, friction, wall=None):
         if wall.height is not None and wall.height < 2.0 * h:
             raise ValueError("wall: a wall lower than the block (height < 2h) is not in the contact model "
                              "yet; run it without friction and flight (the wall model)")
-        if wall.friction != 0.0:
-            raise ValueError("wall: friction > 0 at the wall contact is not in the contact model yet "
-                             "(the wall is frictionless)")
         par[K.P_WALL_SIDE] = float(wall.side)
         par[K.P_E_W] = wall.restitution
         par[K.C_GAP] = wall.gap

@@ -38,9 +38,19 @@ class Wall:
         succession): pass ``restitution = e**2 * e_w`` at d = 0 for a model
         continuous in d.
     friction : float
-        Coulomb coefficient mu_w of the wall contact, >= 0.  Default 0
-        (frictionless); only 0 is modelled so far, a positive value is
-        refused where the scene runs.
+        Coulomb coefficient mu_w of the wall contact (static = kinetic),
+        >= 0.  Default 0 (frictionless).  A positive value needs the contact
+        model, i.e. ``friction=Friction(...)`` in the scene (``Friction(inf,
+        lift_off="flight")`` for a pivot that never slips); the wall model
+        (no ``friction=``) and the flexible body's keep a frictionless wall
+        and refuse it.  In the contact model the wall friction acts while
+        the block rests or slides on the wall (a block leaning on the wall,
+        or wedged between ground and wall, holds while some wall force
+        within the cone makes every contact force admissible; sliding along
+        the wall costs mu_w N_w) and in wall impacts (Coulomb's cone for
+        the wall impulse; restitution e_w: Poisson's rule in flight, plastic
+        where it would add energy).  The face impact (flat into the wall)
+        is not changed by it.
 
     Notes
     -----
@@ -132,8 +142,9 @@ class Wall:
         """Write the wall entries of the rigid kernel's parameter vector."""
         from fastrock.kernels import layout as K
         if self.friction != 0.0:
-            raise ValueError("wall: friction > 0 at the wall contact is not modelled yet (the wall is "
-                             "frictionless)")
+            raise ValueError("wall: friction > 0 at the wall contact needs the contact model: add "
+                             "friction=Friction(mu) (or Friction(inf, lift_off='flight') for a pivot "
+                             "that never slips); the wall model's wall is frictionless")
         par[K.P_WALL_SIDE] = float(self.side)
         par[K.P_THETA_W] = self.limit_angle(body)
         par[K.P_E_W] = self.restitution

@@ -41,7 +41,23 @@ WALL_REST), D_PIVOT s (rocking corner; 0 left = -1, 1 right = +1),
 D_STATIC, D_SLIP_DIR sigma (ground slip direction), and the state of each
 contact point in disc[D_CS0 + k]: CS_OPEN, CS_STICK, CS_SLIP_P
 (sigma = +1), CS_SLIP_N (sigma = -1), CS_FREE (frictionless: normal force
-only).
+only).  The wall contact (k = 2) is the top corner (CS_FREE) or the
+wall-side base corner (CS_WALL_BASE) with a normal force only, or, on a
+frictional wall (mu_w > 0), slipping along it (CS_TOP_SLIP_P/N,
+CS_BASE_SLIP_P/N: friction -mu_w sigma_w N_w along the tangent (0, 1)) or
+sticking (CS_TOP_STICK, CS_BASE_STICK: impulse solves only).
+
+Wall friction (mu_w = par[C_MU_W] > 0; mu_w = 0 runs the frictionless
+code unchanged).  With a base corner and the wall contact both closed the
+body has one degree of freedom: a sticking pivot holds the wall point
+too (a static phase whose wall force is statically indeterminate: it
+holds while some F_w, |F_w| <= mu_w N_w, makes every force admissible,
+``wall_stick_lp``), and a slipping pivot slips the wall point with it (the
+ladders, ``wall_ladder``: both directions from the mode solve, both stop
+together).  Wall impacts: ``wall_pivot_impact_fr`` (pivot on the ground)
+and ``point_impulse`` (in flight: Routh with Poisson's restitution e_w,
+plastic where that would add energy).  The face impact is unchanged (the
+block ends flat: the wall's vertical impulse only shares the ground's).
 
 Mode solve (``solve_contacts``)
 -------------------------------
@@ -98,7 +114,7 @@ Parameters (``par``, N_PAR entries)
  15  C_B2  m, half-width right of the CM
  16  C_H2  m, CM height above the right corner
  17  C_GAP m, wall gap d (inf or nan: no wall)
- 18  C_MU_W wall friction (0: frictionless; only 0 is implemented)
+ 18  C_MU_W wall friction mu_w (0: frictionless; static = kinetic)
  19  C_HT1 m, height of the top-left corner above the CM
  20  C_HT2 m, height of the top-right corner above the CM
 A friction parameter vector (kernels/friction.py) extended to N_PAR with
@@ -163,6 +179,17 @@ CS_FREE = 4       # frictionless: normal force only
 # the wall contact (slot 2) taken by the wall-side base corner instead of
 # the top corner: the face (or the lower corner) against the wall
 CS_WALL_BASE = 5
+# the wall contact slipping along a frictional wall (mu_w > 0: C_MU_W),
+# sigma_w = sign of its velocity along the wall's tangent (0, 1), friction
+# -mu_w sigma_w N_w: the top corner (_TOP_) or the wall-side base corner
+# (_BASE_); the wall contact sticking (its tangential velocity 0: impulse
+# solves only, a sticking wall with a closed ground contact is static)
+CS_TOP_SLIP_P = 6
+CS_TOP_SLIP_N = 7
+CS_BASE_SLIP_P = 8
+CS_BASE_SLIP_N = 9
+CS_TOP_STICK = 10
+CS_BASE_STICK = 11
 # body point index of the wall-side base corner seen as a wall contact
 K_NEAR = 3
 # the wall-side base corner counts as at the wall below this gap [m]
@@ -184,6 +211,8 @@ K_WALL = 10
 K_WALL_BASE = 11
 N_EVENTS = 12
 
+# iteration cap of the sequential impulses of a frictional wall impact
+PGS_MAX = 20000
 # a tangential contact velocity below this [m/s] counts as zero (stick test)
 V_TOL = 1e-12
 # the other base corner counts as on the ground at a landing below this [m]
@@ -297,6 +326,57 @@ def set_cm_velocity(y, par, vgx, vgy, om):
     y[5] = vgy + om * hm * sn
 
 
+# ---------------------------------------------------------------- wall states
+@jit
+def wall_base(st2):
+    """The wall contact state st2 is the wall-side base corner's."""
+    return (st2 == CS_WALL_BASE or st2 == CS_BASE_SLIP_P
+            or st2 == CS_BASE_SLIP_N or st2 == CS_BASE_STICK)
+
+
+@jit
+def wall_top(st2):
+    """The wall contact state st2 is the top corner's (closed)."""
+    return (st2 == CS_FREE or st2 == CS_TOP_SLIP_P or st2 == CS_TOP_SLIP_N
+            or st2 == CS_TOP_STICK)
+
+
+@jit
+def wall_sigma(st2):
+    """Slip direction sigma_w of a slipping wall contact (0 otherwise)."""
+    if st2 == CS_TOP_SLIP_P or st2 == CS_BASE_SLIP_P:
+        return 1
+    if st2 == CS_TOP_SLIP_N or st2 == CS_BASE_SLIP_N:
+        return -1
+    return 0
+
+
+@jit
+def wall_state(kw, mode):
+    """Wall contact state of wall point kw (2 or K_NEAR): mode 0 normal
+    force only, 1 sticking, +-2 slipping with sigma_w = +-1."""
+    if kw == K_NEAR:
+        if mode == 1:
+            return CS_BASE_STICK
+        if mode == 2:
+            return CS_BASE_SLIP_P
+        if mode == -2:
+            return CS_BASE_SLIP_N
+        return CS_WALL_BASE
+    if mode == 1:
+        return CS_TOP_STICK
+    if mode == 2:
+        return CS_TOP_SLIP_P
+    if mode == -2:
+        return CS_TOP_SLIP_N
+    return CS_FREE
+
+
+@jit
+def wall_frictional(par):
+    return par[C_MU_W] > 0.0
+
+
 # ---------------------------------------------------------------- mode solve
 @jit
 def contact_mu(k, par, kinetic):
@@ -327,7 +407,9 @@ def solve_targets(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
     sticking: REST is a static phase, never solved here).  ``tgt2`` is the
     target of the wall contact's normal row (impulse form: the post-impact
     normal velocity -e_w v_n-).  The wall contact is the top corner
-    (st2 = CS_FREE) or the wall-side base corner (st2 = CS_WALL_BASE).
+    (st2 = CS_FREE, CS_TOP_*) or the wall-side base corner (st2 =
+    CS_WALL_BASE, CS_BASE_*); slipping on a frictional wall its friction is
+    -mu_w sigma_w N_w along (0, 1), sticking it adds a tangential row.
     """
     iG = par[C_IG]
     c = math.cos(theta)
@@ -340,7 +422,7 @@ def solve_targets(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
         st = st0 if k == 0 else (st1 if k == 1 else st2)
         if st == CS_OPEN:
             continue
-        kk = K_NEAR if (k == 2 and st == CS_WALL_BASE) else k
+        kk = K_NEAR if (k == 2 and wall_base(st)) else k
         cx, cy = body_point(kk, par)
         rx = cx * c + cy * sn
         ry = -cx * sn + cy * c
@@ -348,10 +430,17 @@ def solve_targets(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
         jn2 = ry * nx - rx * ny
         jt2 = ry * tx - rx * ty
         m = 0.0
-        if st == CS_SLIP_P:
-            m = -contact_mu(k, par, True)
-        elif st == CS_SLIP_N:
-            m = contact_mu(k, par, True)
+        if k == 2:
+            sw = wall_sigma(st)
+            if sw != 0:
+                m = -sw * par[C_MU_W]
+            stick = st == CS_TOP_STICK or st == CS_BASE_STICK
+        else:
+            stick = st == CS_STICK
+            if st == CS_SLIP_P:
+                m = -contact_mu(k, par, True)
+            elif st == CS_SLIP_N:
+                m = contact_mu(k, par, True)
         # normal row, normal-force column
         ws[n, 0] = nx
         ws[n, 1] = ny
@@ -367,7 +456,7 @@ def solve_targets(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
         ws[n, 14] = 0.0
         ws[n, 15] = m
         n += 1
-        if st == CS_STICK:
+        if stick:
             ws[n, 0] = tx
             ws[n, 1] = ty
             ws[n, 2] = jt2
@@ -573,7 +662,7 @@ def event(k, t, y, par, disc, hdr, smp):
             return g, gd, True
         if mode != MODE_ROCK and mode != MODE_SLIDE_ROCK:
             return np.inf, 0.0, True
-        if disc[D_CS2] == CS_WALL_BASE:
+        if wall_base(disc[D_CS2]):
             return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
         if (1 if s > 0 else 0) == near_index(par):
             return np.inf, 0.0, True
@@ -636,9 +725,9 @@ def event(k, t, y, par, disc, hdr, smp):
     if k == K_STICK and mode != MODE_SLIDE_ROCK:
         return np.inf, 0.0, True
     if k == K_WALL:
-        if not wall_active(par) or disc[D_CS2] == CS_WALL_BASE:
+        if not wall_active(par) or wall_base(disc[D_CS2]):
             return np.inf, 0.0, True
-        if disc[D_CS2] == CS_FREE:
+        if wall_top(disc[D_CS2]):
             # top-corner ladder (top_ladder): the wall's force reaching 0
             return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
         gap, vn, _vt = point_kin(2, y, par)
@@ -1089,16 +1178,23 @@ def pick_wall_corner(j, t, y, par, disc, hdr, smp, met, log, cnt,
         vt = 0.0
     acc = np.empty(3)
     mu = par[C_MU_S]
+    fr_w = wall_frictional(par)
     if vt != 0.0:
         sig = sign_of(vt)
         st = slip_state(sig)
+        stw = CS_WALL_BASE
+        if fr_w:
+            # the corner's slip along the wall goes with the pivot's (one
+            # degree of freedom with both contacts closed)
+            _g, _vnw, vtw = point_kin(K_NEAR, y, par)
+            stw = wall_state(K_NEAR, 2 * sign_of(vtw))
         ok, N0, _F0, N1, _F1, N2, _F2 = mode_solve(
             t, y, par, st if j == 0 else CS_OPEN, st if j == 1 else CS_OPEN,
-            CS_WALL_BASE, hdr, smp, acc)
+            stw, hdr, smp, acc)
         N = N1 if j == 1 else N0
         if ok and N >= 0.0 and N2 >= 0.0:
             set_single(j, st, disc)
-            disc[D_CS2] = CS_WALL_BASE
+            disc[D_CS2] = stw
             return RUNNING
         # no slip along the wall: the slip stops (plastic, dissipative)
         y[3] -= vt
@@ -1112,12 +1208,27 @@ def pick_wall_corner(j, t, y, par, disc, hdr, smp, met, log, cnt,
                                              CS_WALL_BASE, hdr, smp, acc)
     N = N1 if j == 1 else N0
     F = F1 if j == 1 else F0
-    if ok and N >= 0.0 and N2 >= 0.0 and (abs(F) <= mu * N
-                                          or not np.isfinite(mu)):
+    wedged = ok and N >= 0.0 and N2 >= 0.0 and (abs(F) <= mu * N
+                                                 or not np.isfinite(mu))
+    if fr_w:
+        # frictional wall: wedged while some admissible wall friction holds
+        bx, by, bw = free_acc(t, par, hdr, smp)
+        okl, m, _P, _N, F, _Nw = wall_stick_lp(y[0], bx, by, bw,
+                                               y[1] * y[1], par, j, K_NEAR,
+                                               0.0, acc)
+        wedged = okl and m >= 0.0
+    if wedged:
         set_contacts(disc, st0, st1, CS_WALL_BASE)
         log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], disc[D_PIVOT])
         return RUNNING
-    if np.isfinite(par[C_MU_K]):
+    if fr_w and np.isfinite(par[C_MU_K]):
+        tol = 1e-12 * (par[P_G] + abs(acc[0]) + abs(acc[1]))
+        if wall_ladder(j, K_NEAR, t, y, par, disc, hdr, smp, -tol):
+            met[M_N_STICK_SLIP] += 1
+            log_event(log, cnt, t, EV_SLIP, y[1], y[1], y[0],
+                      disc[D_SLIP_DIR])
+            return RUNNING
+    elif np.isfinite(par[C_MU_K]):
         sig1 = -1 if F > 0.0 else 1
         for sig in (sig1, -sig1):
             st = slip_state(sig)
@@ -1380,6 +1491,15 @@ def wall_rest_margin(t, y, par, disc, hdr, smp):
     st1 = CS_STICK if j == 1 else CS_OPEN
     bx, by, bw = free_acc(te, par, hdr, smp)
     st2 = CS_WALL_BASE if disc[D_CS2] == CS_WALL_BASE else CS_FREE
+    if wall_frictional(par):
+        # a frictional wall: its tangential force is indeterminate, the
+        # rest holds while some admissible one exists (``wall_stick_lp``)
+        kw = K_NEAR if st2 == CS_WALL_BASE else 2
+        ok, m, _P, _N, _F, _Nw = wall_stick_lp(y[0], bx, by, bw, 0.0, par, j,
+                                               kw, 0.0, acc)
+        if not ok:
+            return -1.0
+        return m
     ok, N0, F0, N1, F1, N2, _F2 = solve_contacts(
         y[0], bx, by, bw, 0.0, par, st0, st1, st2, acc)
     N = N1 if j == 1 else N0
@@ -1391,6 +1511,123 @@ def wall_rest_margin(t, y, par, disc, hdr, smp):
     if not ok:
         return -1.0
     return m
+
+
+@jit
+def wall_stick_lp(theta, bx, by, bw, om2, par, j, kw, tgt2, acc):
+    """Base corner j sticking on the ground and wall point kw (2 or K_NEAR)
+    closed on a frictional wall (mu_w > 0): three constraints fix the
+    motion, the four forces (N, F at the pivot, N_w, F_w at the wall) are
+    statically indeterminate.  With the wall's tangential force F_w = P
+    given, the mode solve (the wall row normal only, P added to the free
+    acceleration ``b``) gives N, F, N_w affine in P; the margin is the
+    largest over P of the least of N, N_w, mu_s N -+ F (finite mu_s) and
+    mu_w N_w -+ P, a 1-D linear program solved exactly (the maximum of a
+    concave piecewise-linear function: at P = 0, at a crossing of two of
+    the lines, or its limit where every line is nondecreasing one way;
+    capped at cap).  The same routine serves the impulse form (b: the
+    pre-impact velocity, om2 = 0, tgt2: the wall's target velocity): the
+    motion (``acc``) does not depend on P.  Returns (ok, margin, P, N, F,
+    N_w): P the admissible wall force closest to 0 if there is one (else
+    the maximiser)."""
+    st0 = CS_STICK if j == 0 else CS_OPEN
+    st1 = CS_STICK if j == 1 else CS_OPEN
+    stw = wall_state(kw, 0)
+    iG = par[C_IG]
+    rx, ry = point_offset(kw, theta, par)
+    # the response to a unit tangential wall force along (0, 1), i.e. the
+    # free acceleration (dx, dy, dw) = (0, 1, -rx / iG), alone (the system
+    # is linear: solved on its own, not as a difference of two solves)
+    tmp = np.empty(3)
+    ok1, N0, F0, N1, F1, bW, _F2 = solve_targets(
+        theta, 0.0, 1.0, -rx / iG, 0.0, par, st0, st1, stw, 0.0, tmp)
+    bN = N1 if j == 1 else N0
+    bF = F1 if j == 1 else F0
+    ok, N0, F0, N1, F1, Nw, _F2 = solve_targets(
+        theta, bx, by, bw, om2, par, st0, st1, stw, tgt2, acc)
+    aN = N1 if j == 1 else N0
+    aF = F1 if j == 1 else F0
+    if not (ok and ok1):
+        return False, -1.0, 0.0, aN, aF, Nw
+    mu_s = par[C_MU_S]
+    mu_w = par[C_MU_W]
+    A = np.empty(6)
+    B = np.empty(6)
+    A[0] = aN
+    B[0] = bN
+    A[1] = Nw
+    B[1] = bW
+    A[2] = mu_w * Nw
+    B[2] = mu_w * bW - 1.0
+    A[3] = mu_w * Nw
+    B[3] = mu_w * bW + 1.0
+    n = 4
+    if np.isfinite(mu_s):
+        A[4] = mu_s * aN - aF
+        B[4] = mu_s * bN - bF
+        A[5] = mu_s * aN + aF
+        B[5] = mu_s * bN + bF
+        n = 6
+    cap = abs(bx) + abs(by) + abs(bw) * (par[C_B1] + par[C_H1]) + abs(tgt2)
+    best = -np.inf
+    pbest = 0.0
+    # beyond every crossing of two lines and every zero of a line
+    far = 1.0 + cap
+    for ic in range(n):
+        if B[ic] != 0.0:
+            far = max(far, 2.0 * abs(A[ic] / B[ic]))
+        for k in range(ic + 1, n):
+            if B[ic] != B[k]:
+                far = max(far, 2.0 * abs((A[ic] - A[k]) / (B[k] - B[ic])))
+    for d in (1.0, -1.0):
+        # every line nondecreasing toward d: the supremum is the least
+        # level of the flat ones (or unbounded: capped)
+        up = True
+        lim = np.inf
+        for i in range(n):
+            if B[i] * d < 0.0:
+                up = False
+            elif B[i] == 0.0:
+                lim = min(lim, A[i])
+        if up:
+            lim = min(lim, cap)
+            if lim > best:
+                best = lim
+                # beyond every crossing and zero: the rising lines are
+                # positive and above the flat ones (the limit, or the cap)
+                pbest = d * far
+    for ic in range(-1, n):
+        for k in range(ic + 1, n):
+            if ic < 0:
+                P = 0.0
+            else:
+                if B[ic] == B[k]:
+                    continue
+                P = (A[ic] - A[k]) / (B[k] - B[ic])
+            v = np.inf
+            for i in range(n):
+                v = min(v, A[i] + B[i] * P)
+            if v > best:
+                best = v
+                pbest = P
+            if ic < 0:
+                break
+    best = min(best, cap)
+    if best >= 0.0:
+        # the forces reported: the admissible P closest to 0 (every line
+        # >= 0 on [lo, hi]), the least internal force (a wedge's
+        # indeterminate forces can be large)
+        lo = -np.inf
+        hi = np.inf
+        for i in range(n):
+            if B[i] > 0.0:
+                lo = max(lo, -A[i] / B[i])
+            elif B[i] < 0.0:
+                hi = min(hi, -A[i] / B[i])
+        if lo <= hi:
+            pbest = min(max(0.0, lo), hi)
+    return True, best, pbest, aN + bN * pbest, aF + bF * pbest, \
+        Nw + bW * pbest
 
 
 @jit
@@ -1495,6 +1732,205 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post, kw=2):
 
 
 @jit
+def routh_more(wtt, wtn, wnn, vt, vn, mu_s, mu_k, dp):
+    """Routh's incremental point impact (as kernels/friction.routh_general)
+    continued by a further normal impulse dp >= 0 whatever v_n does (the
+    restitution phase of Poisson's rule): slipping against v_t, sticking
+    when v_t reaches 0 if mu_s holds, else slipping the other way.  Returns
+    (pt, pn, vt, vn)."""
+    pt = 0.0
+    pn = 0.0
+    left = dp
+    for _phase in range(4):
+        if not left > 0.0:
+            break
+        if vt == 0.0 and abs(wtn) <= mu_s * wtt:
+            rate_t = -wtn / wtt
+            at = 0.0
+            an = wnn - wtn * wtn / wtt
+        else:
+            if vt == 0.0:
+                sig = 1.0 if wtn > 0.0 else -1.0
+            else:
+                sig = 1.0 if vt > 0.0 else -1.0
+            rate_t = -mu_k * sig
+            at = rate_t * wtt + wtn
+            an = rate_t * wtn + wnn
+        d = left
+        if vt * at < 0.0 and -vt / at < d:
+            d = -vt / at
+            pt += rate_t * d
+            pn += d
+            vn += an * d
+            vt = 0.0
+            left -= d
+            continue
+        pt += rate_t * d
+        pn += d
+        vt += at * d
+        vn += an * d
+        left = 0.0
+    return pt, pn, vt, vn
+
+
+@jit
+def point_inertia(k, theta, par):
+    """Contact-space inverse inertia (per unit mass) of point k in its
+    (t, n) frame: (wtt, wtn, wnn, jt, jn) with j = r_y d_x - r_x d_y the
+    rotation column (theta' clockwise) of direction d."""
+    iG = par[C_IG]
+    rx, ry = point_offset(k, theta, par)
+    nx, ny, tx, ty = frame(k, par)
+    jt = ry * tx - rx * ty
+    jn = ry * nx - rx * ny
+    return (tx * tx + ty * ty + jt * jt / iG, tx * nx + ty * ny + jt * jn / iG,
+            nx * nx + ny * ny + jn * jn / iG, jt, jn)
+
+
+@jit
+def point_impulse(k, y, par, post, e, mu_s, mu_k, imp, i0):
+    """Frictional impact of point k alone, starting from the CM velocity
+    post (v_Gx, v_Gy, theta'), updated in place: Routh's plastic
+    compression to v_n = 0, then (e > 0) Poisson's restitution phase, a
+    further normal impulse e times the compression's, with the same
+    Coulomb rules (``routh_more``).  Poisson's rule with friction can add
+    energy where the slip reverses (Stronge, Impact Mechanics, 2000, ch.
+    5), and a slip that cannot raise v_n would end it still approaching:
+    the restitution phase is then dropped (plastic).  imp[i0],
+    imp[i0 + 1] += (normal, tangential) impulse.  Nothing happens when
+    the point does not approach."""
+    tmp = y.copy()
+    set_cm_velocity(tmp, par, post[0], post[1], post[2])
+    _g, vn, vt = point_kin(k, tmp, par)
+    if not vn < 0.0:
+        return
+    wtt, wtn, wnn, jt, jn = point_inertia(k, tmp[0], par)
+    nx, ny, tx, ty = frame(k, par)
+    iG = par[C_IG]
+    pt, pn, vt1 = routh_general(wtt, wtn, wnn, vt, vn, mu_s, mu_k)
+    if e > 0.0 and pn > 0.0:
+        pt2, pn2, _vt2, vn2 = routh_more(wtt, wtn, wnn, vt1, 0.0, mu_s,
+                                         mu_k, e * pn)
+        # kinetic energy change of an impulse P: v.P + P.W.P / 2
+        dt_ = pt + pt2
+        dn_ = pn + pn2
+        dE = (vt * dt_ + vn * dn_
+              + 0.5 * (wtt * dt_ * dt_ + 2.0 * wtn * dt_ * dn_
+                       + wnn * dn_ * dn_))
+        if dE <= 0.0 and vn2 >= 0.0:
+            pt = dt_
+            pn = dn_
+    post[0] += tx * pt + nx * pn
+    post[1] += ty * pt + ny * pn
+    post[2] += (jt * pt + jn * pn) / iG
+    imp[i0] += pn
+    imp[i0 + 1] += pt
+
+
+@jit
+def wall_pivot_impact_fr(j, y, par, vgx, vgy, tgt, before, post, kw, imp):
+    """``wall_pivot_impact`` on a frictional wall (mu_w > 0): the wall
+    point kw's tangential impulse P_t obeys Coulomb with mu_w, P_n >= 0.
+    Candidates, the first admissible one that does not raise the kinetic
+    energy wins:
+      1. pivot sticking: the motion is the frictionless wall's (three
+         constraints), the impulses are indeterminate and admissible if
+         some P_t in the cone makes the pivot's admissible
+         (``wall_stick_lp``);
+      2. pivot slipping in sigma (pre-impact slip direction, else -sgn L_t
+         of 1) with the wall point sticking (|P_t| <= mu_w P_n), then
+         slipping in sigma_w (pre-impact direction, else -sgn P_t of the
+         sticking solve), then in -sigma_w; neither slip reversed;
+      3. separation: the wall's frictional impact alone
+         (``point_impulse``), admissible when the pivot then leaves the
+         ground;
+      4. else sequential plastic frictional impulses of the pivot and the
+         wall point (Routh each, dissipative) while either approaches.
+    imp receives (L_n, L_t) of the pivot and (P_n, P_t) of the wall (per
+    unit mass; P_t along (0, 1)).  Returns True when the pivot separates."""
+    mu_s = par[C_MU_S]
+    mu_k = par[C_MU_K]
+    mu_w = par[C_MU_W]
+    th = y[0]
+    om = y[1]
+    for i in range(4):
+        imp[i] = 0.0
+    _g, _vn, vt0 = point_kin(j, y, par)
+    _g, _vnw, vtw0 = point_kin(kw, y, par)
+    tol = before * (1.0 + 1e-12) + 1e-300
+    okl, m, P, N, F, Nw = wall_stick_lp(th, vgx, vgy, om, 0.0, par, j, kw,
+                                        tgt, post)
+    if okl and m >= 0.0:
+        E, _tmp = post_energy(y, par, post)
+        if E <= tol:
+            imp[0] = N
+            imp[1] = F
+            imp[2] = Nw
+            imp[3] = P
+            return False
+    if abs(vt0) > V_TOL:
+        sig = sign_of(vt0)
+    else:
+        sig = -1 if F > 0.0 else 1
+    st = slip_state(sig)
+    st0 = st if j == 0 else CS_OPEN
+    st1 = st if j == 1 else CS_OPEN
+    cand = np.empty(3)
+    sw = sign_of(vtw0)
+    for c in range(3):
+        wm = 1 if c == 0 else (2 * sw if c == 1 else -2 * sw)
+        ok, N0, F0, N1, F1, N2, F2 = solve_targets(
+            th, vgx, vgy, om, 0.0, par, st0, st1, wall_state(kw, wm), tgt,
+            cand)
+        if c == 0 and abs(vtw0) <= V_TOL:
+            sw = -1 if F2 > 0.0 else 1
+        N = N1 if j == 1 else N0
+        F = F1 if j == 1 else F0
+        if not (ok and N >= 0.0 and N2 >= 0.0):
+            continue
+        if c == 0 and abs(F2) > mu_w * N2:
+            continue
+        E, tmp = post_energy(y, par, cand)
+        _g, _vn, vt1 = point_kin(j, tmp, par)
+        _g, _vn, vtw1 = point_kin(kw, tmp, par)
+        if E <= tol and sig * vt1 >= 0.0 and (c == 0 or
+                                              (wm // 2) * vtw1 >= 0.0):
+            for i in range(3):
+                post[i] = cand[i]
+            imp[0] = N
+            imp[1] = F
+            imp[2] = N2
+            imp[3] = F2
+            return False
+    post[0] = vgx
+    post[1] = vgy
+    post[2] = om
+    # the wall's impulse alone: the normal target is -e_w v_n- (tgt)
+    _g, vnw, _vt = point_kin(kw, y, par)
+    e_w = -tgt / vnw if vnw < 0.0 else 0.0
+    point_impulse(kw, y, par, post, e_w, mu_w, mu_w, imp, 2)
+    tmp = y.copy()
+    set_cm_velocity(tmp, par, post[0], post[1], post[2])
+    _g, vn1, _vt1 = point_kin(j, tmp, par)
+    if vn1 >= 0.0:
+        return True
+    # sequential impulses (projected Gauss-Seidel), each a plastic
+    # frictional point impact (Routh): pushing, in its cone, dissipative;
+    # it ends with the pivot's impulse, so only the wall point can keep a
+    # residual approach (below 1e-12 of the speed scale) unless the
+    # iteration cap is reached (slow where friction nearly jams the pivot)
+    scale = math.sqrt(2.0 * before) + 1e-300
+    for _it in range(PGS_MAX):
+        point_impulse(j, y, par, post, 0.0, mu_s, mu_k, imp, 0)
+        set_cm_velocity(tmp, par, post[0], post[1], post[2])
+        _g, vn2, _vt2 = point_kin(kw, tmp, par)
+        if vn2 >= -1e-12 * scale:
+            break
+        point_impulse(kw, y, par, post, 0.0, mu_w, mu_w, imp, 2)
+    return False
+
+
+@jit
 def face_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, count_wall):
     """The block arrives flat with its face at the wall (slid flat into it,
     or rocked / flew down flat onto the ground with the wall-side base
@@ -1561,7 +1997,9 @@ def at_face(y, par):
 @jit
 def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
     """Wall point kw (2: the top corner, K_NEAR: the wall-side base corner)
-    reached the (frictionless) wall: impulse solve with the wall's
+    reached the wall (frictionless; mu_w > 0: ``wall_pivot_impact_fr``, and
+    in flight ``point_impulse``; the held pivot of mu = inf fixes the
+    motion whatever the wall's friction): impulse solve with the wall's
     post-impact normal velocity -e_w v_n- and, while rocking, the pivot
     held (ROCK: its velocity 0, which gives theta'+ = -e_w theta'- about
     the pivot as kernels/wall.py) or frictionless during the impact
@@ -1586,7 +2024,15 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
     post = np.empty(3)
     tgt = -e_w * vn2
     separated = False
-    if mode == MODE_FLIGHT:
+    if mode == MODE_FLIGHT and wall_frictional(par):
+        # a frictional wall alone: Routh's impact with Poisson's restitution
+        post[0] = vgx
+        post[1] = vgy
+        post[2] = y[1]
+        imp = np.zeros(4)
+        point_impulse(kw, y, par, post, e_w, par[C_MU_W], par[C_MU_W], imp,
+                      2)
+    elif mode == MODE_FLIGHT:
         solve_targets(y[0], vgx, vgy, y[1], 0.0, par, CS_OPEN, CS_OPEN,
                       stw, tgt, post)
     elif mode == MODE_ROCK and not np.isfinite(par[C_MU_S]):
@@ -1596,6 +2042,10 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
         solve_targets(y[0], vgx, vgy, y[1], 0.0, par,
                       CS_STICK if j == 0 else CS_OPEN,
                       CS_STICK if j == 1 else CS_OPEN, stw, tgt, post)
+    elif wall_frictional(par):
+        imp = np.zeros(4)
+        separated = wall_pivot_impact_fr(j, y, par, vgx, vgy, tgt, before,
+                                         post, kw, imp)
     else:
         separated = wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post,
                                       kw)
@@ -1653,6 +2103,8 @@ def top_ladder(j, t, y, par, disc, hdr, smp):
         return False
     acc = np.empty(3)
     tol = 1e-12 * (par[P_G] + abs(y[1]))
+    if wall_frictional(par):
+        return wall_ladder(j, 2, t, y, par, disc, hdr, smp, tol)
     for sig in (1, -1):
         st = slip_state(sig)
         st0 = st if j == 0 else CS_OPEN
@@ -1664,6 +2116,36 @@ def top_ladder(j, t, y, par, disc, hdr, smp):
         if ok and N >= 0.0 and N2 >= 0.0 and sig * at > tol:
             set_contacts(disc, st0, st1, CS_FREE)
             return True
+    return False
+
+
+@jit
+def wall_ladder(j, kw, t, y, par, disc, hdr, smp, tol):
+    """Frictional wall (mu_w > 0): from rest, base corner j slipping on the
+    ground in sigma and wall point kw (2 or K_NEAR) slipping along the wall
+    in sigma_w (friction -mu_w sigma_w N_w), the first of the four
+    direction pairs whose mode solve is consistent: both normal forces >= 0
+    and both contacts accelerating their own way (sigma a_t > tol, sigma_w
+    a_tw > tol).  With both contacts closed the body has one degree of
+    freedom, so the two slips start, and stop, together (K_STICK of the
+    pivot ends the phase).  Sets the contact states and returns True, or
+    False when no pair is consistent."""
+    acc = np.empty(3)
+    for sig in (1, -1):
+        st = slip_state(sig)
+        st0 = st if j == 0 else CS_OPEN
+        st1 = st if j == 1 else CS_OPEN
+        for sw in (1, -1):
+            stw = wall_state(kw, 2 * sw)
+            ok, N0, _F0, N1, _F1, N2, _F2 = mode_solve(t, y, par, st0, st1,
+                                                       stw, hdr, smp, acc)
+            N = N1 if j == 1 else N0
+            _an, at = contact_acc(j, y, par, acc)
+            _anw, atw = contact_acc(kw, y, par, acc)
+            if (ok and N >= 0.0 and N2 >= 0.0 and sig * at > tol
+                    and sw * atw > tol):
+                set_contacts(disc, st0, st1, stw)
+                return True
     return False
 
 
@@ -1729,14 +2211,14 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return landing(k - K_LAND0, t, y, par, disc, hdr, smp, opt, met, log,
                        cnt)
     if k == K_WALL:
-        if mode == MODE_SLIDE_ROCK and disc[D_CS2] == CS_FREE:
+        if mode == MODE_SLIDE_ROCK and wall_top(disc[D_CS2]):
             # top-corner ladder: the wall's force reached 0
             log_event(log, cnt, t, EV_WALL_RELEASE, y[1], y[1], y[0], s)
             return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
                                False)
         return wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
     if k == K_WALL_BASE:
-        if mode != MODE_FLIGHT and disc[D_CS2] == CS_WALL_BASE:
+        if mode != MODE_FLIGHT and wall_base(disc[D_CS2]):
             # the wall's normal force reached 0: the corner leaves the wall
             log_event(log, cnt, t, EV_WALL_RELEASE, y[1], y[1], y[0], s)
             return pick_single_ground(j, t, y, par, disc, hdr, smp, met, log,

@@ -155,3 +155,79 @@ def slide_rock_until_impact(b, h, g, mu_s, mu_k, theta0, omega0, v0, s,
                 sigma = -1 if F > 0 else 1
             out.append(("stick", t, *u))
     return out
+
+
+def ladder_on_wall(b, h, g, theta0, mu, mu_w, rtol=1e-12, t_max=20.0):
+    """A rectangle 2b x 2h leaning at rest on a rigid wall on its right
+    (side +1) with its top right corner, pivoting on its bottom right
+    corner, friction mu at the ground and mu_w at the wall (physics.md 4.6,
+    "Wall as a contact point"): the pivot slips away from the wall while
+    the top corner slides down the wall (a ladder).  One degree of freedom
+    theta (clockwise, toward the wall), derived here by hand: the pivot at
+    x_P = X_w - 2h sin(theta) on the ground, the CM at
+    (X_w - h sin - b cos, h cos + b sin); unknowns (theta'', N, N_w) from
+    Newton-Euler with F = -mu sigma N (sigma = sgn x_P'), F_w = -mu_w
+    sigma_w N_w (sigma_w = sgn y_T', y_T = 2h cos theta).
+
+    Integrates until the wall force reaches 0 (the top corner leaves the
+    wall), the pivot's normal force reaches 0 or the slip stops.  Returns
+    dict(kind ("release", "lift", "stop"), t, theta, omega, N, N_w,
+    start=(theta'', N, N_w) at t = 0)."""
+    iG = (b * b + h * h) / 3.0
+
+    def forces(th, om):
+        c, s = math.cos(th), math.sin(th)
+        # directions of the slips for theta' > 0 (from rest: theta'' > 0)
+        sig = -1.0            # x_P' = -2h cos(theta) theta' < 0
+        sig_w = -1.0          # y_T' = -2h sin(theta) theta' < 0
+        f, f_w = -mu * sig, -mu_w * sig_w
+        rPx, rPy = -h * s + b * c, -h * c - b * s
+        rTx, rTy = h * s + b * c, h * c - b * s
+        A = np.array([[-h * c + b * s, -f, 1.0],
+                      [-h * s + b * c, -1.0, -f_w],
+                      [iG, -(rPy * f - rPx), -(-rTy - rTx * f_w)]])
+        rhs = np.array([-(h * s + b * c) * om * om,
+                        -g + (h * c + b * s) * om * om,
+                        0.0])
+        return np.linalg.solve(A, rhs)
+
+    def f(t, u):
+        return [u[1], forces(u[0], u[1])[0]]
+
+    def release(t, u):
+        return forces(u[0], u[1])[2]
+    release.terminal = True
+    release.direction = -1
+
+    def lift(t, u):
+        return forces(u[0], u[1])[1]
+    lift.terminal = True
+    lift.direction = -1
+
+    def stop(t, u):
+        return u[1]
+    stop.terminal = True
+    stop.direction = -1
+    start = forces(theta0, 0.0)
+    sol = solve_ivp(f, (0.0, t_max), [theta0, 0.0], events=[release, lift, stop],
+                    rtol=rtol, atol=1e-14, method="DOP853")
+    hits = [(sol.t_events[i][0], i) for i in range(3) if len(sol.t_events[i])]
+    t, i = min(hits)
+    th, om = sol.y_events[i][0]
+    _tdd, N, N_w = forces(th, om)
+    return dict(kind=("release", "lift", "stop")[i], t=t, theta=th, omega=om, N=N, N_w=N_w,
+                start=tuple(start))
+
+
+def lean_critical_mu_w(b, h, theta, mu):
+    """Least wall friction mu_w that holds a rectangle at rest leaning on
+    the wall at theta (> alpha) with ground friction mu < tan(theta)
+    (statics by hand: the ladder of the block's wall-side face; moments
+    about the pivot 2h (cos N_w + sin F_w) = g (h sin - b cos), F = N_w,
+    N = g - F_w; the best wall friction is F_w = mu_w N_w, upward):
+        mu_w* = (tan theta - tan alpha - 2 mu) / (mu (tan theta + tan alpha)),
+    0 where the frictionless wall holds already (mu >= (tan theta -
+    tan alpha) / 2)."""
+    ta = b / h
+    tt = math.tan(theta)
+    return max(0.0, (tt - ta - 2.0 * mu) / (mu * (tt + ta)))

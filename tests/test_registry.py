@@ -228,10 +228,12 @@ def test_a_vertical_record_must_match_the_horizontal_one():
     np.testing.assert_equal(r.metrics, ref.metrics)   # NaN equals NaN
 
 
-def test_wall_friction_is_a_named_option_refused_until_modelled():
+def test_wall_friction_is_a_named_option_of_the_contact_model():
+    """Wall friction runs in the contact model (tests/test_contact_wall_friction.py); the wall model,
+    whose wall is frictionless, refuses it and names the way to the contact model."""
     assert Wall(gap=0.01).friction == 0.0
     with pytest.raises(ValueError, match="friction must be >= 0"):
         Wall(gap=0.01, friction=-0.1)
-    for kw in ({}, {"friction": Friction(0.5)}):
-        with pytest.raises(ValueError, match="wall: friction > 0"):
-            simulate(BLOCK, Pulse(2.0, 1.0, amplitude_unit="g_tan_alpha"), wall=Wall(gap=0.01, friction=0.3), **kw)
+    with pytest.raises(ValueError, match="wall: friction > 0 .*friction=Friction"):
+        simulate(BLOCK, Pulse(2.0, 1.0, amplitude_unit="g_tan_alpha"), wall=Wall(gap=0.01, friction=0.3))
+    assert registry.select(BLOCK, wall=Wall(gap=0.01, friction=0.3), friction=Friction(0.5)).name == "contact"
