@@ -39,8 +39,9 @@ STATUS_DESCRIPTION = {
     "leaning": "came to rest leaning on the wall",
     "flight": "lost contact with the ground (vertical acceleration below -g, or the normal force "
               "reached 0 while rocking)",
-    "failed:inconsistent-contact": "friction: neither stick nor slip in either direction is consistent "
-                                   "(a Painleve-type paradox, seen at very large mu)",
+    "failed:inconsistent-contact": "friction: no contact mode is consistent even after the Painleve "
+                                   "rules (lift-off, tangential impact); left only for rounding exactly "
+                                   "at their boundaries, please report the run",
     "failed:unstable-step": "the fixed step dt lies outside the integrator's stability region for this "
                             "body (the solution diverged or would have): a smaller dt, or the adaptive "
                             "solver, gives the answer",
