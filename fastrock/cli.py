@@ -99,7 +99,7 @@ def _wall(args):
         return None
     from .wall import Wall
     return Wall(gap=args.wall_gap, side=args.wall_side, height=args.wall_height,
-                restitution=args.wall_restitution)
+                restitution=args.wall_restitution, friction=args.wall_friction)
 
 
 def _friction(args):
@@ -144,6 +144,9 @@ def _add_body_options(p):
                         "toward it (default -1)")
     w.add_argument("--wall-height", type=float, help="wall height [m] (default: taller than the block)")
     w.add_argument("--wall-restitution", type=float, default=1.0, help="wall restitution e_w [-] (default 1)")
+    w.add_argument("--wall-friction", type=float, default=0.0,
+                   help="Coulomb friction mu_w of the wall contact [-] (default 0, frictionless; > 0 "
+                        "needs the contact model: --mu-s, or --lift-off flight)")
     fd = p.add_argument_group("flexible foundation (rigid block with --b/--h)")
     fd.add_argument("--foundation", choices=("two-spring", "switching", "linear"),
                     help="stand the block on a flexible foundation (default: rigid ground)")

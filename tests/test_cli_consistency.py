@@ -170,3 +170,16 @@ def test_rocking_spectrum_takes_a_folder_or_a_glob_in_any_letter_case(tmp_path, 
                    "two-sided", "--csv", str(csv), "--png", str(tmp_path / "rs.png"), "-q"])
     assert rc == 0
     assert pd.read_csv(csv)["record"].nunique() == 3
+
+
+def test_wall_friction_on_the_command_line(tmp_path, capsys):
+    csv = tmp_path / "h.csv"
+    assert cli.main(["simulate", "--b", "0.2", "--h", "1.0", "--wall-gap", "0.05", "--wall-friction", "0.5",
+                     "--mu-s", "0.6", "--amplitude", "4", "--csv", str(csv)]) == 0
+    assert "kernel contact" in capsys.readouterr().out
+    ref = fastrock.simulate(fastrock.RigidBlock.rectangle(0.2, 1.0),
+                            fastrock.Pulse(4, 2, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p"),
+                            wall=fastrock.Wall(0.05, friction=0.5), friction=fastrock.Friction(0.6))
+    np.testing.assert_array_equal(pd.read_csv(csv)["theta"].to_numpy(), ref.history["theta"].to_numpy())
+    assert cli.main(["simulate", "--b", "0.2", "--h", "1.0", "--wall-gap", "0.05", "--wall-friction", "0.5"]) == 2
+    assert "friction" in capsys.readouterr().err
