@@ -207,8 +207,8 @@ def cmd_spectrum(args):
     counts = df["outcome"].value_counts().to_dict()
     print(f"{len(df)} runs in {el:.2f} s ({len(df) / el:,.0f} runs/s), outcomes {counts}")
     if df.attrs.get("interrupted"):
-        return interrupted_exit(len(df), n_total, "runs", [args.png] + tables)
-    wrote([args.png] + tables)
+        return interrupted_exit(len(df), n_total, "runs", tables + [args.png])
+    wrote(tables + [args.png])
     return 0
 
 

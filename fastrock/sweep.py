@@ -1,6 +1,7 @@
 """Chunked parallel sweeps: progress (tqdm), Ctrl-C keeps finished rows."""
 from __future__ import annotations
 
+import os
 import sys
 import threading
 import warnings
@@ -30,8 +31,22 @@ class Progress:
     """Progress of a sweep on stderr through tqdm (terminals, notebooks; a log file gets a line
     every ``LOG_INTERVAL`` s instead of a stream of carriage returns)."""
 
-    #: Seconds between progress lines when stderr is no terminal.
+    #: Seconds between progress lines when stderr is no terminal (environment variable
+    #: FASTROCK_PROGRESS_INTERVAL overrides it).
     LOG_INTERVAL = 30.0
+
+    @classmethod
+    def log_interval(cls):
+        text = os.environ.get("FASTROCK_PROGRESS_INTERVAL")
+        if text is None:
+            return cls.LOG_INTERVAL
+        try:
+            value = float(text)
+        except ValueError:
+            value = -1.0
+        if not (0.0 <= value < 1e6):
+            raise ValueError(f"FASTROCK_PROGRESS_INTERVAL must be a number of seconds >= 0, got {text!r}")
+        return value
 
     def __init__(self, total, enabled=True, label="runs"):
         self.total = total
@@ -43,7 +58,7 @@ class Progress:
             from tqdm.auto import tqdm
             tty = getattr(sys.stderr, "isatty", lambda: False)()
             self._bar = tqdm(total=total, unit=" " + label, file=sys.stderr if tty else _LogLines(sys.stderr),
-                             dynamic_ncols=True, mininterval=0.1 if tty else self.LOG_INTERVAL,
+                             dynamic_ncols=True, mininterval=0.1 if tty else self.log_interval(),
                              smoothing=0.1)
 
     def stage(self, text):

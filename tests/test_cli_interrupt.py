@@ -7,6 +7,7 @@ output shows that runs are finishing."""
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -22,10 +23,16 @@ from fastrock import cli
 pytestmark = pytest.mark.slow
 
 
+#: A progress line (tqdm, written as lines to a pipe) with runs finished: "| 3600/720000 [".
+RUNS_DONE = re.compile(rb"\|\s*[1-9]\d*/\d+ \[")
+
+
 def _interrupt_when(cmd, cwd, marker, stream="stderr", timeout=240):
-    """Run ``cmd``; send SIGINT when ``marker`` first shows on ``stream``.
+    """Run ``cmd``; send SIGINT when ``marker`` (bytes, or a compiled bytes regex) first shows
+    on ``stream``.  Progress lines come every 0.2 s (FASTROCK_PROGRESS_INTERVAL).
     Returns (returncode, stdout, stderr)."""
-    env = dict(os.environ, PYTHONUNBUFFERED="1")
+    env = dict(os.environ, PYTHONUNBUFFERED="1", FASTROCK_PROGRESS_INTERVAL="0.2")
+    found = marker.search if hasattr(marker, "search") else (lambda buf: marker in buf)
     p = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
     out = {"stdout": bytearray(), "stderr": bytearray()}
     seen = threading.Event()
@@ -36,7 +43,7 @@ def _interrupt_when(cmd, cwd, marker, stream="stderr", timeout=240):
             if not b:
                 break
             out[name] += b
-            if name == stream and marker in out[name]:
+            if name == stream and found(out[name]):
                 seen.set()
 
     threads = [threading.Thread(target=pump, args=(k, getattr(p, k)), daemon=True) for k in out]
@@ -57,7 +64,7 @@ def _fastrock():
 def test_spectrum_writes_the_finished_rows_and_figure(tmp_path):
     rc, out, err = _interrupt_when(
         _fastrock() + ["spectrum", "--n-amp", "600", "--n-freq", "600", "--sign", "both",
-                       "--png", "s.png", "--csv", "s.csv"], tmp_path, b"runs ")
+                       "--png", "s.png", "--csv", "s.csv"], tmp_path, RUNS_DONE)
     assert rc == 130, err[-2000:]
     df = pd.read_csv(tmp_path / "s.csv")
     assert 0 < len(df) < 720_000
@@ -70,7 +77,7 @@ def test_rocking_spectrum_writes_the_finished_rows_and_figure(tmp_path):
     rc, out, err = _interrupt_when(
         _fastrock() + ["rocking-spectrum", "--n-slenderness", "60", "--n-sizes", "60",
                        "--walls", "two-sided,0.01", "--t-after", "30",
-                       "--png", "r.png", "--csv", "r.csv"], tmp_path, b"runs (")
+                       "--png", "r.png", "--csv", "r.csv"], tmp_path, RUNS_DONE)
     assert rc == 130, err[-2000:]
     assert (tmp_path / "r.csv").stat().st_size > 0
     assert (tmp_path / "r.png").stat().st_size > 0
@@ -87,7 +94,7 @@ def test_study_keeps_its_chunks_and_exits_130(tmp_path):
         '[[bodies]]\ntype = "rigid"\nb = 0.2\nh = 1.6\n'
         '[run]\nchunk_size = 8\n')
     rc, out, err = _interrupt_when(_fastrock() + ["study", "s.toml", "--output", "res"], tmp_path,
-                                   b"runs ")
+                                   RUNS_DONE)
     assert rc == 130, err[-2000:]
     assert "chunks finished; wrote res with them" in err
     from fastrock.study import load_results

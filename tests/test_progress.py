@@ -1,6 +1,7 @@
 """Progress through tqdm (issue #16, item 4): a compile stage before the first chunk, and whole
 lines, no carriage returns, when stderr is a log file."""
 import numpy as np
+import pytest
 
 from fastrock import sweep
 from fastrock.kernels import layout as L
@@ -38,3 +39,14 @@ def test_no_progress_writes_nothing(capsys):
     bar.update(100)
     bar.close()
     assert capsys.readouterr().err == ""
+
+
+def test_the_log_interval_is_set_by_the_environment(monkeypatch):
+    monkeypatch.setenv("FASTROCK_PROGRESS_INTERVAL", "0.5")
+    assert sweep.Progress.log_interval() == 0.5
+    monkeypatch.delenv("FASTROCK_PROGRESS_INTERVAL")
+    assert sweep.Progress.log_interval() == sweep.Progress.LOG_INTERVAL == 30.0
+    for bad in ("soon", "-1", "nan"):
+        monkeypatch.setenv("FASTROCK_PROGRESS_INTERVAL", bad)
+        with pytest.raises(ValueError, match="FASTROCK_PROGRESS_INTERVAL"):
+            sweep.Progress.log_interval()
