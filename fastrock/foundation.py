@@ -431,7 +431,7 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical
     return SimulationResult(history=history, events=events, outcome=outcome_of(code),
                             status=status_of(code), status_code=code, metrics=metrics,
                             kernel=spec.name, body=body, excitation=excitation,
-                            effects=effects, ground_inputs=(hdr, smp), vertical=vertical)
+                            effects=effects, vertical=vertical)
 
 
 def _dedupe(t, *cols):

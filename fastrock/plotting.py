@@ -145,11 +145,8 @@ def plot_history(result, axes=None):
     axes = dict(zip(panels, np.atleast_1d(axes)))
     g = result.body.g
     t = h["t"].to_numpy()
-    if result.ground_inputs is not None and t.size:
-        tg = _excitation_times(result, t[0], t[-1])
-        ag, av = result.ground_acceleration(tg)
-    else:
-        tg, ag, av = t, h["a_g"].to_numpy(), h["a_v"].to_numpy()
+    tg = _excitation_times(result, t[0], t[-1]) if t.size else t
+    ag, av = result.ground_acceleration(tg)
     ax = axes["ground"]
     ax.plot(tg, ag / g, lw=0.9, label="horizontal $a_g$")
     if np.any(av != 0):

@@ -117,16 +117,13 @@ class SimulationResult:
     body: object
     excitation: object = None
     effects: tuple = field(default_factory=tuple)
-    #: the kernel's excitation header and samples, for :meth:`ground_acceleration`
-    ground_inputs: tuple = field(default=None, repr=False, compare=False)
     vertical: object = None
 
     def ground_acceleration(self, t):
         """Horizontal and vertical ground acceleration [m/s^2] at times ``t`` [s], from the
         excitation itself (not from the rows the integrator happened to store)."""
-        if self.ground_inputs is None:
-            raise ValueError("this result carries no excitation")
-        return _ground_at(np.atleast_1d(np.asarray(t, dtype=float)), *self.ground_inputs)
+        hdr, smp = X.to_header(self.body, self.excitation, self.vertical)
+        return _ground_at(np.atleast_1d(np.asarray(t, dtype=float)), hdr, smp)
 
     def plot(self, **kw):
         from .plotting import plot_history
@@ -272,7 +269,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     return SimulationResult(history=history, events=events, outcome=outcome,
                             status=status_of(code), status_code=code,
                             metrics=metrics, kernel=spec.name, body=body,
-                            excitation=excitation, ground_inputs=(hdr, smp), vertical=vertical,
+                            excitation=excitation, vertical=vertical,
                             effects=tuple(e for e, on in (("flexible", spec.flexible),
                                                           ("friction", spec.friction),
                                                           ("flight", spec.model.flight),

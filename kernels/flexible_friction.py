@@ -214,13 +214,8 @@ def normal_margins(t, y, s, par, hdr, smp):
     positive definite W)."""
     _ag, _G, c, sn, Xc, Yc, _fu, _ft, m22, _n0, _fd = rows(t, y, s, par,
                                                              hdr, smp)
-    H = par[F_H]
     _u, _t, _d, A = slip_rock_k(t, y, s, 0.0, par, hdr, smp)
-    # M^-1 e_d (e_d: the slip row), as in stop_slip
-    zu = H * Yc - m22 * c
-    zt = H * c - Yc
-    zd = m22 - H * H
-    det = c * zu + Yc * zt + (1.0 + par[F_MB]) * zd
+    zu, zt, _zd, det = slip_column(c, Yc, m22, par)
     return A, -(sn * zu + Xc * zt) / det
 
 
@@ -272,18 +267,8 @@ def stop_slip(t, y, s, par, met):
     d'+ = 0, the kinetic-metric projection onto d' = 0 (the normal impulse
     is the constraint's; it only dissipates)."""
     before = kinetic(y, s, par)
-    H = par[F_H]
-    mb = par[F_MB]
-    r = y[0] - s * par[F_B]
-    c = math.cos(y[2])
-    _X, Y, _Xb, Yb = positions(r, c, math.sin(y[2]), s, par)
-    m22 = r * r + base_inertia(par) + H * H
-    yc = Y + mb * Yb
-    # M z = e_d, M = [[1, H, c], [H, m22, yc], [c, yc, 1 + mb]]
-    zu = H * yc - m22 * c
-    zt = H * c - yc
-    zd = m22 - H * H
-    det = c * zu + yc * zt + (1.0 + mb) * zd
+    c, yc, m22 = mass_entries(y, s, par)
+    zu, zt, zd, det = slip_column(c, yc, m22, par)
     lam = -y[5] * det / zd
     y[1] += zu / det * lam
     y[3] += zt / det * lam
@@ -605,17 +590,34 @@ def reload(t, y, par, disc, hdr, smp, met, log, cnt):
 def kinetic(y, s, par):
     """Kinetic energy per unit mass, q'^T M q' / 2 with the mass matrix of
     (u, theta, d) on pivot s (physics.md 4.4)."""
-    H = par[F_H]
-    mb = par[F_MB]
-    r = y[0] - s * par[F_B]
-    c = math.cos(y[2])
-    _X, Y, _Xb, Yb = positions(r, c, math.sin(y[2]), s, par)
-    m22 = r * r + base_inertia(par) + H * H
+    c, Yc, m22 = mass_entries(y, s, par)
     du = y[1]
     dth = y[3]
     dd = y[5]
-    return (0.5 * (du * du + m22 * dth * dth + (1.0 + mb) * dd * dd)
-            + H * du * dth + c * du * dd + (Y + mb * Yb) * dth * dd)
+    return (0.5 * (du * du + m22 * dth * dth + (1.0 + par[F_MB]) * dd * dd)
+            + par[F_H] * du * dth + c * du * dd + Yc * dth * dd)
+
+
+@jit
+def mass_entries(y, s, par):
+    """(cos theta, Y_c, m22) of the mass matrix of (u, theta, d) on pivot s,
+    M = [[1, H, c], [H, m22, Y_c], [c, Y_c, 1 + m_b]] (physics.md 4.4)."""
+    H = par[F_H]
+    r = y[0] - s * par[F_B]
+    c = math.cos(y[2])
+    _X, Y, _Xb, Yb = positions(r, c, math.sin(y[2]), s, par)
+    return c, Y + par[F_MB] * Yb, r * r + base_inertia(par) + H * H
+
+
+@jit
+def slip_column(c, Yc, m22, par):
+    """M^-1 e_d = (zu, zt, zd) / det, the response of (u, theta, d) to a unit
+    horizontal impulse at the pivot (e_d: the slip row of M)."""
+    H = par[F_H]
+    zu = H * Yc - m22 * c
+    zt = H * c - Yc
+    zd = m22 - H * H
+    return zu, zt, zd, c * zu + Yc * zt + (1.0 + par[F_MB]) * zd
 
 
 @jit
