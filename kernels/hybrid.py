@@ -171,6 +171,29 @@ def _falsi_point(lo, hi, glo, ghi, tol, bisect):
     return 0.5 * (lo + hi)
 
 
+@jit
+def _bracket_tol(lo, hi):
+    """Width at which a bracket counts as converged: 4 eps max(|t|, 1), as
+    SciPy's brentq xtol."""
+    return 4.0 * EPS * max(abs(lo), abs(hi), 1.0)
+
+
+@jit
+def _shrink(lo, hi, glo, ghi, side, m, gm, keep_lo):
+    """Illinois update of the bracket (lo, hi) with the trial point m of
+    value gm: ``keep_lo`` says m lies on lo's side.  When the same end is
+    kept twice in a row its value is halved, so both ends converge
+    superlinearly.  With ``_falsi_point`` this is the one root finder of
+    the kernels: event roots, static exits and grazing extrema use it."""
+    if keep_lo:
+        if side == 1:
+            ghi *= 0.5
+        return m, hi, gm, ghi, 1
+    if side == -1:
+        glo *= 0.5
+    return lo, m, glo, gm, -1
+
+
 @jit_generic
 def _bisect_root(event, k, lo, hi, glo, ghi, t_old, h, y_old, Q, yev, par,
                  disc, hdr, smp):
@@ -187,42 +210,35 @@ def _bisect_root(event, k, lo, hi, glo, ghi, t_old, h, y_old, Q, yev, par,
     """
     side = 0
     for it in range(MAX_FALSI):
-        tol = 4.0 * EPS * max(abs(lo), abs(hi), 1.0)
+        tol = _bracket_tol(lo, hi)
         if hi - lo <= tol:
             return hi, True
         m = _falsi_point(lo, hi, glo, ghi, tol, it % 4 == 3)
         dense_eval(m, t_old, h, y_old, Q, yev)
         g, _gd, _term = event(k, m, yev, par, disc, hdr, smp)
-        if g > 0.0:
-            if side == 1:
-                ghi *= 0.5
-            lo = m
-            glo = g
-            side = 1
-        else:
-            if side == -1:
-                glo *= 0.5
-            hi = m
-            ghi = g
-            side = -1
+        lo, hi, glo, ghi, side = _shrink(lo, hi, glo, ghi, side, m, g, g > 0.0)
     return hi, False
 
 
 @jit_generic
 def _bisect_extremum(event, k, lo, hi, sign, t_old, h, y_old, Q, yev, par,
                      disc, hdr, smp):
-    """Locate where gdot changes sign: sign*gdot < 0 at lo, > 0 at hi."""
+    """Locate where gdot changes sign: sign*gdot < 0 at lo, > 0 at hi.
+    Bisection only (``_falsi_point`` with ``bisect`` set): gdot's values
+    at the step ends are not bracketing values of one smooth function
+    once the secant is kept away from the ends."""
+    side = 0
+    glo = -1.0
+    ghi = 1.0
     for _ in range(MAX_BISECT):
-        tol = 4.0 * EPS * max(abs(lo), abs(hi), 1.0)
+        tol = _bracket_tol(lo, hi)
         if hi - lo <= tol:
             break
-        mid = 0.5 * (lo + hi)
+        mid = _falsi_point(lo, hi, glo, ghi, tol, True)
         dense_eval(mid, t_old, h, y_old, Q, yev)
         _g, gd, _term = event(k, mid, yev, par, disc, hdr, smp)
-        if sign * gd < 0.0:
-            lo = mid
-        else:
-            hi = mid
+        lo, hi, glo, ghi, side = _shrink(lo, hi, glo, ghi, side, mid, sign * gd,
+                                         sign * gd < 0.0)
     return 0.5 * (lo + hi)
 
 
@@ -321,23 +337,12 @@ def _static_exit(static_margin, t, t_stop, y, par, disc, hdr, smp):
             ghi = g
             side = 0
             for it in range(MAX_FALSI):
-                tol = 4.0 * EPS * max(abs(hi), 1.0)
+                tol = _bracket_tol(lo, hi)
                 if hi - lo <= tol:
                     break
                 m = _falsi_point(lo, hi, glo, ghi, tol, it % 4 == 3)
                 gm = static_margin(m, y, par, disc, hdr, smp)
-                if gm >= 0.0:
-                    if side == 1:
-                        ghi *= 0.5
-                    lo = m
-                    glo = gm
-                    side = 1
-                else:
-                    if side == -1:
-                        glo *= 0.5
-                    hi = m
-                    ghi = gm
-                    side = -1
+                lo, hi, glo, ghi, side = _shrink(lo, hi, glo, ghi, side, m, gm, gm >= 0.0)
             return hi
         if tk >= t_stop:
             return np.inf
