@@ -60,12 +60,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import ratios  # noqa: E402  (shared set-up: sweep inputs, threads, load average)
 
 import fastrock as fr  # noqa: E402
-from fastrock import Friction, Wall, models  # noqa: E402
+from fastrock import Friction, Wall  # noqa: E402
+from fastrock.running import registry
 from fastrock.kernels import layout as L  # noqa: E402
-from fastrock.outcomes import status_of  # noqa: E402
-from fastrock.records import load_default_record  # noqa: E402
-from fastrock.scene import Scene  # noqa: E402
-from fastrock.sweep import run_sweep  # noqa: E402
+from fastrock.running.outcomes import status_of  # noqa: E402
+from fastrock.io.default_records import load_default_record  # noqa: E402
+from fastrock.running.scene import Scene  # noqa: E402
+from fastrock.running.sweep import run_sweep  # noqa: E402
 
 BLOCK = fr.RigidBlock.rectangle(b=0.25, h=1.0)
 AMPS = (1.0, 6.0)
@@ -92,7 +93,7 @@ def cells(n):
 
 def kernel_inputs(n, effect_kw=None, early_exit=True):
     """(spec, inputs) of the sweep kernel selected for ``effect_kw`` on the n x n grid."""
-    spec = models.select(BLOCK, **(effect_kw or {}))
+    spec = registry.select(BLOCK, **(effect_kw or {}))
     A, F = cells(n)
     Y0, PAR, HDR, smp, OPT = ratios.sweep_inputs(BLOCK, A, F, sign=1, rtol=RTOL, early_exit=early_exit,
                                                  t_after=T_AFTER)
@@ -133,7 +134,7 @@ def interleaved(fns, repeats):
 def spectrum_level(effect, n, repeats, with_inert=True):
     kw, off, inert = EFFECTS[effect]
     spec0, inp0 = kernel_inputs(n)
-    spec_off = models.select(BLOCK, **{kw: off})
+    spec_off = registry.select(BLOCK, **{kw: off})
     from fastrock.kernels.rigid import rigid_sweep
     assert spec_off.name == "rigid" and spec_off.sweep is rigid_sweep, spec_off.name
     st0, _ = chunked(spec0, inp0)
@@ -190,13 +191,13 @@ def direct_simulate(spec, hdr, smp, opt, cap=20000):
 
 
 def run_level(effect, repeats):
-    from fastrock import excitation as X
+    from fastrock.model import excitation as X
     kw, off, inert = EFFECTS[effect]
     s_plain, s_off, s_inert = scene(), scene({kw: off}), scene({kw: inert})
     assert s_plain.kernel == s_off.kernel == "rigid" and s_inert.kernel != "rigid"
     r0, r1, r2 = s_plain.run(), s_off.run(), s_inert.run()
     assert r0.metrics["nfev"] == r1.metrics["nfev"] and r0.status == r1.status
-    spec = models.select(BLOCK)
+    spec = registry.select(BLOCK)
     rec = s_plain.excitation
     hdr, smp = X.to_header(BLOCK, rec, None)
     opt = s_plain.solver.options(X.end_time(BLOCK, rec, None) + 5.0, False)

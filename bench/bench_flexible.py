@@ -36,9 +36,9 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 import fastrock as fr
-from fastrock import models
+from fastrock.running import registry
 from fastrock.kernels import layout as L
-from fastrock.outcomes import outcome_of, status_of
+from fastrock.running.outcomes import outcome_of, status_of
 
 ALPHA = 0.3
 P = 2.0
@@ -84,7 +84,7 @@ def sweep_cells(body, cells, threads=1, early_exit=True):
     """Run (amplitude_ratio, frequency_ratio) cells through the body's sweep kernel, one call per
     cell (sequential, like the SciPy loop).  Returns (seconds per run, status, MET)."""
     import numba
-    spec = models.select(body)
+    spec = registry.select(body)
     opt = fr.Solver(rtol=RTOL).options(0.0, early_exit)
     old = numba.get_num_threads()
     numba.set_num_threads(threads)

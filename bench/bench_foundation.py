@@ -36,10 +36,12 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import fastrock as fr
-from fastrock import excitation as X
-from fastrock import foundation as FD
+from fastrock.model import excitation as X
+from fastrock.model import foundation as FD
+from fastrock.running import foundation as RF
+from fastrock.analyses.foundation_predictors import foundation_half_cycles
 from fastrock.kernels import layout as L
-from fastrock.solver import Solver
+from fastrock.running.solver import Solver
 from ratios import one_thread  # shared bench helpers (bench/ is on sys.path)
 
 BODY = fr.RigidBlock.rectangle(b=0.1, h=0.5)
@@ -79,7 +81,7 @@ def pulse(model):
 def sweep_inputs(model, cells, theta0=0.0, t_end=None):
     """Inputs of ``<model>_sweep`` for excitations ``cells`` (None: free motion for ``t_end``)."""
     fnd = foundation(model)
-    spec, blk = FD.foundation_spec(BODY, fnd, MASS)
+    spec, blk = RF.foundation_spec(BODY, fnd, MASS)
     rows = [X.to_header(BODY, exc) for exc in cells]
     HDR = np.array([h for h, _ in rows])
     smp = rows[0][1]
@@ -226,7 +228,7 @@ def test_bench_two_spring_free_scipy(benchmark):
     t_scipy = benchmark.stats.stats.min
     # the same model: same re-contacts, same zero crossings
     r = free("two_spring")
-    hc = FD.foundation_half_cycles(r)["t_end"].to_numpy()
+    hc = foundation_half_cycles(r)["t_end"].to_numpy()
     n = min(len(hc), len(crossings), 10)
     dev = float(np.max(np.abs(hc[:n] - crossings[:n])))
     benchmark.extra_info.update(nfev=nfev, impacts=impacts, fastrock_impacts=int(r.metrics["impacts"]),

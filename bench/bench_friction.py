@@ -40,11 +40,12 @@ import numpy as np
 import pytest
 
 import fastrock as fr
-from fastrock import Friction, models
+from fastrock import Friction
+from fastrock.running import registry
 from fastrock.kernels import layout as L
-from fastrock.records import load_default_record
-from fastrock.scene import Scene
-from fastrock.solver import Solver
+from fastrock.io.default_records import load_default_record
+from fastrock.running.scene import Scene
+from fastrock.running.solver import Solver
 from ratios import one_thread  # shared bench helpers (bench/ is on sys.path)
 
 BLOCK = fr.RigidBlock.rectangle(b=0.25, h=1.0)
@@ -97,7 +98,7 @@ def inf_vs_none(repeats=5, n=40):
 # ------------------------------------------------------------------ 2. inert friction
 def kernel_inputs(friction, cells):
     """The arrays overturning_spectrum hands to the sweep kernel, for (A, F) cells."""
-    spec = models.select(BLOCK, friction=friction)
+    spec = registry.select(BLOCK, friction=friction)
     A = np.array([c[0] for c in cells])
     F = np.array([c[1] for c in cells])
     n = A.size

@@ -60,7 +60,7 @@ def record_files(directory=RECORDS_DIR):
 
 
 def load(files):
-    from fastrock.records import read_record
+    from fastrock.io.readers import read_record
     return [read_record(f, unit=UNITS.get(f.name)) for f in files]
 
 
@@ -198,14 +198,16 @@ def _wall_args(gap, h):
 
 # -------------------------------------------------------------- sections
 def first_call(records):
-    from fastrock.rocking_spectrum import default_walls, rocking_spectrum
+    from fastrock.analyses.rocking_spectrum.inputs import default_walls
+    from fastrock.analyses.rocking_spectrum.definitions import rocking_spectrum
     t0 = time.perf_counter()
     rocking_spectrum(records[:1], [0.2], [0.3], walls=default_walls(), progress=False)
     return time.perf_counter() - t0
 
 
 def full_study(records, n_s=20, n_b=20, progress=True):
-    from fastrock.rocking_spectrum import default_walls, rocking_spectrum
+    from fastrock.analyses.rocking_spectrum.inputs import default_walls
+    from fastrock.analyses.rocking_spectrum.definitions import rocking_spectrum
     walls = default_walls()
     s = np.linspace(0.1, 0.5, n_s)
     b = np.linspace(0.1, 1.0, n_b)
@@ -218,7 +220,7 @@ def full_study(records, n_s=20, n_b=20, progress=True):
 def work_precision(record):
     """max|theta|/alpha error against a tight reference, El Centro, 3 blocks."""
     from fastrock import RigidBlock, simulate
-    from fastrock.rocking_spectrum import simulate_record
+    from fastrock.analyses.rocking_spectrum.single_runs import simulate_record
     rows = []
     for b, h in [(0.3, 1.5), (0.25, 1.25), (0.5, 2.5)]:
         body = RigidBlock.rectangle(b, h)
@@ -246,11 +248,12 @@ def fastrock_single_thread(records, sample, early_exit, repeats=3, copies=10):
     rows ``copies`` times in one sweep call (amortising the Python packing),
     best of ``repeats``, ``time.process_time`` (robust on a shared machine)."""
     import numba
-    from fastrock.rocking_spectrum import _as_walls, _rows_sweep
-    from fastrock.solver import make_solver
+    from fastrock.analyses.rocking_spectrum.inputs import as_walls
+    from fastrock.analyses.rocking_spectrum.engine import rows_sweep
+    from fastrock.running.solver import make_solver
     names = [r.name for r in records]
     gaps = sorted({g for g in sample["wall_gap"] if np.isfinite(g)})
-    walls = _as_walls([None] + gaps)
+    walls = as_walls([None] + gaps)
     wall_idx = np.array([0 if not np.isfinite(g) else 1 + gaps.index(g) for g in sample["wall_gap"]])
     rec_idx = np.array([names.index(r) for r in sample["record"]])
     wall_idx, rec_idx = np.tile(wall_idx, copies), np.tile(rec_idx, copies)
@@ -262,7 +265,7 @@ def fastrock_single_thread(records, sample, early_exit, repeats=3, copies=10):
         best = math.inf
         for _ in range(repeats):
             t0 = time.process_time()
-            _rows_sweep(records, rec_idx, b, s, wall_idx, walls, e=None,
+            rows_sweep(records, rec_idx, b, s, wall_idx, walls, e=None,
                         solver=make_solver(rtol=RTOL), t_after=T_AFTER, early_exit=early_exit,
                         progress=False, chunk_size=None)
             best = min(best, time.process_time() - t0)
@@ -382,7 +385,8 @@ def test_bench_rocking_spectrum_reduced(benchmark):
     import pytest
     if not RECORDS_DIR.is_dir():
         pytest.skip(f"{RECORDS_DIR} absent (set FASTROCK_RECORDS_DIR)")
-    from fastrock.rocking_spectrum import default_walls, rocking_spectrum
+    from fastrock.analyses.rocking_spectrum.inputs import default_walls
+    from fastrock.analyses.rocking_spectrum.definitions import rocking_spectrum
     records = load([RECORDS_DIR / "elCentro.AT2", RECORDS_DIR / "RIO270.AT2"])
     s = np.linspace(0.1, 0.5, 5)
     b = np.linspace(0.1, 1.0, 4)

@@ -21,7 +21,7 @@ import pytest
 
 import fastrock
 import ratios as R
-from fastrock.outcomes import status_of
+from fastrock.running.outcomes import status_of
 from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import N_COUNTERS
 from fastrock.kernels.rigid import rigid_simulate
@@ -100,7 +100,7 @@ def test_scipy_solve_ivp(benchmark, block, case):
 
 # ---- spectrum -----------------------------------------------------------------------------
 @pytest.mark.benchmark(group="spectrum")
-@pytest.mark.parametrize("rtol", [R.RTOL, fastrock.solver.DEFAULT_RTOL])
+@pytest.mark.parametrize("rtol", [R.RTOL, fastrock.running.solver.DEFAULT_RTOL])
 def test_spectrum_100x100(benchmark, block, rtol):
     amps, freqs, _, _ = R.grid(100, 100)
     df = benchmark.pedantic(fastrock.overturning_spectrum, args=(block, amps, freqs),

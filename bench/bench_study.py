@@ -59,8 +59,9 @@ UNITS = {"Northridge_Sylmar_County.dat": "m/s2"}
 
 def make_study(quick, levels=None):
     from fastrock import RigidBlock
-    from fastrock.records import load_default_record, read_record
-    from fastrock.study import Study
+    from fastrock.io.default_records import load_default_record
+    from fastrock.io.readers import read_record
+    from fastrock.studies.definition import Study
     if quick or not RECORDS_DIR.is_dir():
         records = [load_default_record()]
     else:
@@ -73,7 +74,7 @@ def make_study(quick, levels=None):
 
 
 def run(study, chunk_size, **kw):
-    from fastrock.study import run_study
+    from fastrock.studies.run import run_study
     with tempfile.TemporaryDirectory() as tmp:
         df = run_study(study, Path(tmp) / "out", chunk_size=chunk_size, progress=False, **kw)
     a = df.attrs
@@ -91,7 +92,9 @@ def main(argv=None):
 
     import numba
     import pandas as pd
-    from fastrock.study import Study, _Plan, run_chunk
+    from fastrock.studies.definition import Study
+    from fastrock.studies.plan import Plan
+    from fastrock.studies.worker import run_chunk
     study = make_study(args.quick)
     n = study.n_runs
     # 1 record, 12 blocks, 40 levels below uplift (PGA <= 0.04 g < g tan alpha = 0.15 g)
@@ -133,7 +136,7 @@ def main(argv=None):
                                                host="127.0.0.1", dashboard_address=None,
                                                silence_logs=40)
             client = distributed.Client(cluster)
-            plan = _Plan(study.prepare(), 2)
+            plan = Plan(study.prepare(), 2)
             client.run(run_chunk, plan.payload(plan.chunks[0]))   # every worker loads the kernel
             print(f"LocalCluster start + workers' first call: {time.perf_counter() - t0:.2f} s")
             clusters.append((client, cluster))

@@ -46,9 +46,9 @@ import numpy as np
 import pytest
 
 import fastrock as fr
-from fastrock import models
+from fastrock.running import registry
 from fastrock.kernels import layout as L
-from fastrock.solver import Solver
+from fastrock.running.solver import Solver
 
 BLOCK = fr.RigidBlock.rectangle(b=0.5, h=2.5)
 AMPS = np.linspace(1.3, 25.0, 48)
@@ -67,7 +67,7 @@ def spectrum(wall):
 
 def kernel_inputs(wall=None):
     """The arrays ``overturning_spectrum`` hands to the sweep kernel (same order)."""
-    spec = models.select(BLOCK, wall)
+    spec = registry.select(BLOCK, wall)
     S, F, A = np.meshgrid(np.array(SIGNS, float), FREQS, AMPS, indexing="ij")
     S, F, A = S.ravel(), F.ravel(), A.ravel()
     n = A.size
@@ -105,8 +105,8 @@ def direct_simulate(spec, hdr, smp, opt, cap=20000):
 
 
 def simulate_inputs():
-    from fastrock import excitation as X
-    spec = models.select(BLOCK)
+    from fastrock.model import excitation as X
+    spec = registry.select(BLOCK)
     hdr, smp = X.to_header(BLOCK, SIM_PULSE, None)
     t_end = X.end_time(BLOCK, SIM_PULSE, None) + T_AFTER
     return spec, hdr, smp, Solver().options(t_end, False)
@@ -129,7 +129,7 @@ def best_of(fns, repeats, clock=time.perf_counter):
 
 def chunked_sweep(spec, inputs):
     """The kernel through the front end's chunked driver, with its default chunk size."""
-    from fastrock.sweep import run_sweep
+    from fastrock.running.sweep import run_sweep
     Y0, PAR, HDR, smp, OPT = inputs
     return run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, None, False)[0]
 

@@ -154,11 +154,11 @@ class Grid:
     def _kernel_inputs(self):
         """The arrays ``overturning_spectrum`` hands to the sweep kernel (same expressions,
         same order: sign slowest, amplitude fastest)."""
-        from fastrock import models
+        from fastrock.running import registry
         from fastrock.kernels import layout as L
-        from fastrock.solver import Solver
+        from fastrock.running.solver import Solver
         b = self.body
-        spec = models.select(b, self.wall)
+        spec = registry.select(b, self.wall)
         S, F, A = np.meshgrid(np.array(self.signs, float), self.freqs, self.amps, indexing="ij")
         S, F, A = S.ravel(), F.ravel(), A.ravel()
         n = A.size
@@ -214,7 +214,7 @@ def grids(quick=False, early=True, which=("rigid", "wall 1 cm", "wall 10 cm")):
 
 # ---- comparison -------------------------------------------------------------------------
 def _codes(df):
-    from fastrock.outcomes import STATUS
+    from fastrock.running.outcomes import STATUS
     inv = {v: k for k, v in STATUS.items()}
     return np.array([inv.get(x, -99) for x in df["status"]])
 

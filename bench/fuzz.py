@@ -304,7 +304,7 @@ def build_scene(P, scale=1.0, variant=None):
         else:
             kw["friction"] = fr.Friction(F["mu_s"], F["mu_k"], slide_tolerance=1e-3 * scale, lift_off=lift)
     if P["foundation"] is not None:
-        from fastrock import foundation as FD
+        from fastrock.model import foundation as FD
         D = P["foundation"]
         om = D["omega_over_p"] * body.p
         if D["type"] == "two-spring":
@@ -364,7 +364,7 @@ class _Alarm:
 
 def spectrum(P, amps, freqs, signs="both", early_exit=True, scale=1.0, variant=None, limit=None):
     """overturning_spectrum of batch P (or a variant); returns (df, seconds, hang)."""
-    from fastrock.spectrum import overturning_spectrum
+    from fastrock.analyses.spectrum import overturning_spectrum
     kw = build_scene(P, scale, variant)
     body = kw.pop("body")
     kind = kw.pop("pulse")
@@ -511,7 +511,7 @@ def pivot_forces(body, theta, w, s, ag, G):
     """Friction force F and normal force N per unit mass [m/s^2] that the pivot s of a rigid
     block rocking without slip needs (arrays), from Newton-Euler of physics.md 4.3 with d'' = 0
     (the frictionless kernel's motion); computed here in numpy, apart from the kernels."""
-    from fastrock.models import rigid_friction_par
+    from fastrock.running.models import rigid_friction_par
     from fastrock import Friction
     from fastrock.kernels import layout as L
     par = rigid_friction_par(body, Friction(1.0))
@@ -658,7 +658,7 @@ def energy(history, body, scene, family):
     s = np.where(s == 0, 1.0, s)
     dd = history["d_dot"].to_numpy() if "d_dot" in history else np.zeros_like(th)
     if family == "friction":
-        from fastrock.models import rigid_friction_par
+        from fastrock.running.models import rigid_friction_par
         from fastrock.kernels import friction as K
         par = rigid_friction_par(body, scene["friction"])
         b, h, IG = par[K.Q_B], par[K.Q_H], par[K.Q_IG]
@@ -667,7 +667,7 @@ def energy(history, body, scene, family):
         return 0.5 * (dd + YG * w) ** 2 + 0.5 * (XG * w) ** 2 + 0.5 * IG * w * w + g * (YG - h)
     if family == "contact":
         # history: d, z = position of the base midpoint P; CM = P + h (sin th, cos th)
-        from fastrock.models import contact_par
+        from fastrock.running.models import contact_par
         from fastrock.kernels import layout as L
         par = contact_par(body, scene["friction"], scene.get("wall"))
         hm, IG = par[L.C_H1], par[L.C_IG]
@@ -852,7 +852,7 @@ def _checks(res, P, main, limit):
 
 def _spectrum_variant_tight(P, amps, freqs, variant, scale, limit):
     """A variant with the tight adaptive solver (and early_exit=False)."""
-    from fastrock.spectrum import overturning_spectrum
+    from fastrock.analyses.spectrum import overturning_spectrum
     fr = _fr()
     kw = build_scene(P, scale, variant)
     body = kw.pop("body")

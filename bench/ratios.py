@@ -43,8 +43,8 @@ import fastrock
 from fastrock import RigidBlock, Solver
 from fastrock.kernels import layout as L
 from fastrock.kernels.rigid import rigid_sweep
-from fastrock.models import select
-from fastrock.sweep import run_sweep
+from fastrock.running.registry import select
+from fastrock.running.sweep import run_sweep
 
 # ---- the benchmark set-up (explicit, shared with bench_rigid.py) -------------------------
 ALPHA = 0.25                 # rad
@@ -539,7 +539,7 @@ def main(argv=None):
     fastrock.overturning_spectrum(blk, [3.0], [2.0], rtol=RTOL, progress=False)
     run_kernel(sweep_inputs(blk, np.array([3.0]), np.array([2.0])))
     sp = section_scipy(blk, n_cells, scipy_repeats, repeats)
-    dr = fastrock.solver.DEFAULT_RTOL
+    dr = fastrock.running.solver.DEFAULT_RTOL
     spec = section_spectra(blk, 3 if q else 5, [(100, dr), (200, dr), (100, RTOL), (200, RTOL)])
     par = section_parallel(blk, n_par, repeats)
     work = section_work(blk, 100)

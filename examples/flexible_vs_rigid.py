@@ -100,7 +100,7 @@ def main(n=80):
 
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
-    from fastrock.plotting import OUTCOME_COLORS, OUTCOME_LABELS
+    from fastrock.plotting.figures import OUTCOME_COLORS, OUTCOME_LABELS
 
     fig, axes = plt.subplots(2, 2, figsize=(11, 8.5), sharex=True, sharey=True, constrained_layout=True)
     ax = axes[0, 0]

@@ -32,8 +32,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from fastrock import RigidBlock, Wall  # noqa: E402
-from fastrock.records import load_default_record, read_record  # noqa: E402
-from fastrock.study import Study, fit_fragility, plot_fragility, run_study  # noqa: E402
+from fastrock.io.default_records import load_default_record  # noqa: E402
+from fastrock.io.readers import read_record  # noqa: E402
+from fastrock.studies.definition import Study  # noqa: E402
+from fastrock.analyses.fragility import fit_fragility  # noqa: E402
+from fastrock.plotting.fragility import plot_fragility  # noqa: E402
+from fastrock.studies.run import run_study  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 RECORDS = Path(os.environ.get("FASTROCK_RECORDS_DIR", ROOT.parent / "shared" / "data" / "records"))

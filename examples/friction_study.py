@@ -53,7 +53,7 @@ import numpy as np
 import pandas as pd
 
 import fastrock as fr
-from fastrock.plotting import OUTCOME_COLORS, OUTCOME_LABELS, _pyplot, plot_spectrum
+from fastrock.plotting.figures import OUTCOME_COLORS, OUTCOME_LABELS, get_pyplot, plot_spectrum
 
 ALPHA = 0.3
 P = 2.0                      # rad/s; outcomes are independent of p, slip scales with g/p^2
@@ -274,7 +274,7 @@ def _key(mu, lo):
 
 
 def fig_spectra(tables, amps, freqs, path, lo=DEFAULT_LIFT_OFF):
-    plt = _pyplot()
+    plt = get_pyplot()
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
     fig, axes = plt.subplots(2, 3, figsize=(13, 8), sharex=True, sharey=True, constrained_layout=True)
@@ -307,7 +307,7 @@ def fig_spectra(tables, amps, freqs, path, lo=DEFAULT_LIFT_OFF):
 
 
 def fig_sliding(tables, amps, freqs, path, lo=DEFAULT_LIFT_OFF):
-    plt = _pyplot()
+    plt = get_pyplot()
     from matplotlib.colors import ListedColormap, LogNorm
     fig, axes = plt.subplots(2, 3, figsize=(13, 8), constrained_layout=True)
     finite = [m for m in MUS if math.isfinite(m)]
@@ -346,7 +346,7 @@ def fig_sliding(tables, amps, freqs, path, lo=DEFAULT_LIFT_OFF):
 
 
 def fig_boundaries(tables, amps, freqs, path, lo=DEFAULT_LIFT_OFF):
-    plt = _pyplot()
+    plt = get_pyplot()
     fig, axes = plt.subplots(1, 2, figsize=(12, 5), sharey=True, constrained_layout=True)
     for mu in sorted(MUS, reverse=True):          # mu = inf first, underneath
         df = classic_view(tables[_key(mu, lo)])
@@ -394,7 +394,7 @@ def _shade(ax, t, mask, color):
 
 
 def fig_histories(runs, path, amp=HISTORY_AMP, mu=HISTORY_MU, lo=DEFAULT_LIFT_OFF):
-    plt = _pyplot()
+    plt = get_pyplot()
     freqs = sorted({f for f, _ in runs})
     fig, axes = plt.subplots(4, len(freqs), figsize=(12, 9), sharex="col", constrained_layout=True)
     inf_label = mu_label(math.inf) + (" (flies)" if lo == "flight" else "")
@@ -443,7 +443,7 @@ def fig_histories(runs, path, amp=HISTORY_AMP, mu=HISTORY_MU, lo=DEFAULT_LIFT_OF
 
 
 def fig_liftoff(tables, amps, freqs, path):
-    plt = _pyplot()
+    plt = get_pyplot()
     from matplotlib.patches import Patch
     finite = [m for m in MUS if math.isfinite(m)]
     shown = [finite[0], finite[-1]]
@@ -492,7 +492,7 @@ def change_codes(flight, hold):
 
 
 def fig_flight_vs_hold(tables, amps, freqs, path):
-    plt = _pyplot()
+    plt = get_pyplot()
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
     shown = [m for m in (0.4, 0.8, math.inf) if (m, "flight") in tables or math.isinf(m)]

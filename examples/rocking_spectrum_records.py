@@ -28,8 +28,10 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from fastrock.records import load_default_record, read_record  # noqa: E402
-from fastrock.rocking_spectrum import plot_rocking_spectrum, rocking_spectrum  # noqa: E402
+from fastrock.io.default_records import load_default_record  # noqa: E402
+from fastrock.io.readers import read_record  # noqa: E402
+from fastrock.plotting.rocking_spectrum import plot_rocking_spectrum  # noqa: E402
+from fastrock.analyses.rocking_spectrum.definitions import rocking_spectrum  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 RECORDS = Path(os.environ.get("FASTROCK_RECORDS_DIR", ROOT.parent / "shared" / "data" / "records"))
@@ -60,7 +62,7 @@ def main():
         non_monotone=("non_monotone", "sum"))
     print(summary.round(3).to_string())
     above = table[(table["wall"] == "two-sided") & (table["beta_bound"] == "exact")]
-    from fastrock.rocking_spectrum import upper_bound_beta
+    from fastrock.analyses.rocking_spectrum.definitions import upper_bound_beta
     n_above = int((above["beta"] > upper_bound_beta(above["tp_over_tm"])).sum())
     print(f"two-sided, exact points above the upper-bound curve: {n_above} of {len(above)}")
 

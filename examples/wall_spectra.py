@@ -35,7 +35,7 @@ import numpy as np
 import pandas as pd
 
 import fastrock as fr
-from fastrock.plotting import _pyplot, plot_spectrum
+from fastrock.plotting.figures import get_pyplot, plot_spectrum
 
 BLOCK = fr.RigidBlock.rectangle(b=0.5, h=2.5)           # e: Housner's value
 GAPS = {"d=1cm": 0.01, "d=10cm": 0.10}
@@ -86,7 +86,7 @@ def summary(all_df):
 
 
 def plot_maps(all_df, cases, x, y, path, title):
-    plt = _pyplot()
+    plt = get_pyplot()
     fig, axes = plt.subplots(2, len(cases), figsize=(5.2 * len(cases), 8.6), constrained_layout=True,
                              squeeze=False)
     for j, case in enumerate(cases):
@@ -102,7 +102,7 @@ def plot_maps(all_df, cases, x, y, path, title):
 def plot_effect(all_df, path):
     """Cells where the block overturns only with the wall (the wall widens the region), only
     without it (narrows it), or in both."""
-    plt = _pyplot()
+    plt = get_pyplot()
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
     colors = ["#e8eef5", "#9aa5b1", "#d62828", "#2a9d8f"]
@@ -148,7 +148,7 @@ def gap_trend(n, path):
             rows.append(dict(gap=d, sign=s, theta_w=fr.Wall(gap=d).limit_angle(BLOCK),
                              overturn=overturns(x).mean(), leaning=(x["outcome"] == "leaning").mean()))
     tr = pd.DataFrame(rows)
-    plt = _pyplot()
+    plt = get_pyplot()
     fig, ax = plt.subplots(figsize=(7.5, 4.6), constrained_layout=True)
     for s, c in ((1, "#d62828"), (-1, "#1d3557")):
         t = tr[tr["sign"] == s]

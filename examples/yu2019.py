@@ -51,10 +51,13 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import fastrock as fr  # noqa: E402
-from fastrock.foundation import (SwitchingFoundation, TwoSpringFoundation,  # noqa: E402
-                                 foundation_half_cycles, make_predictor, simulate_foundation)
-from fastrock.freerocking import (YU2019_BLOCK, fit_free_rocking, housner_amplitudes,  # noqa: E402
-                                  load_yu2019, plot_period_vs_angle)
+from fastrock.model.foundation import SwitchingFoundation, TwoSpringFoundation
+from fastrock.analyses.foundation_predictors import foundation_half_cycles, make_predictor
+from fastrock.running.foundation import simulate_foundation
+from fastrock.analyses.freerocking.yu2019 import YU2019_BLOCK, load_yu2019
+from fastrock.analyses.freerocking.fitting import fit_free_rocking
+from fastrock.analyses.freerocking.housner import housner_amplitudes
+from fastrock.plotting.freerocking import plot_period_vs_angle
 
 OUT = Path(__file__).resolve().parents[1] / "out"
 N = 20                      # measured half-cycles 1..20 per release

@@ -28,20 +28,32 @@ def _source_checkout_kernels():
 
 _source_checkout_kernels()
 
-from .bodies import FlexibleBody, RigidBlock, housner_restitution  # noqa: E402
-from .constants import G_STANDARD
-from .excitation import Pulse, SampledMotion
-from .solver import Solver
-from .simulate import SimulationResult, simulate
-from .spectrum import overturning_spectrum
-from .friction import Friction
-from .records import GroundMotion, read_record
-from .foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation, simulate_foundation
-from .wall import Wall
-from .freerocking import FreeRockingFit, fit_free_rocking, half_cycles
-from .rocking_spectrum import rocking_spectrum
-from .scene import Scene
-from .study import FragilityFit, Study, fit_fragility, plot_fragility, run_study
+from fastrock.model.bodies import FlexibleBody, RigidBlock, housner_restitution  # noqa: E402
+from fastrock.constants import G_STANDARD, VERSION
+from fastrock.model.excitation import Pulse, SampledMotion
+from fastrock.model.friction import Friction
+from fastrock.model.wall import Wall
+from fastrock.model.foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation
+from fastrock.io.ground_motion import GroundMotion
+from fastrock.io.readers import read_record
+from fastrock.running.solver import Solver
+from fastrock.running.result import SimulationResult
+from fastrock.running.simulate import simulate
+from fastrock.running.foundation import simulate_foundation
+from fastrock.running.scene import Scene
+from fastrock.analyses.spectrum import overturning_spectrum
+from fastrock.analyses.freerocking.fitting import FreeRockingFit, fit_free_rocking
+from fastrock.analyses.freerocking.half_cycles import half_cycles
+# the foundation models register their predictors with fit_free_rocking on import
+from fastrock.analyses import foundation_predictors
+from fastrock.analyses.rocking_spectrum.definitions import rocking_spectrum
+from fastrock.analyses.fragility import FragilityFit, fit_fragility
+from fastrock.studies.definition import Study
+from fastrock.studies.run import run_study
+# fastrock.plotting registers the figure of SimulationResult.plot() on import
+from fastrock.plotting.fragility import plot_fragility
+
+del foundation_predictors
 
 __all__ = [
     # bodies, scenes and excitations
@@ -54,4 +66,4 @@ __all__ = [
     "overturning_spectrum", "rocking_spectrum", "half_cycles", "fit_free_rocking", "FreeRockingFit",
     "Study", "run_study", "fit_fragility", "FragilityFit", "plot_fragility",
 ]
-__version__ = "0.1.0"
+__version__ = VERSION

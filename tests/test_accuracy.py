@@ -10,9 +10,10 @@ import pandas as pd
 import pytest
 
 import fastrock as fr
-from fastrock import accuracy as A
-from fastrock import models
-from fastrock.cli import main
+from fastrock.analyses import accuracy as A
+from fastrock.plotting.accuracy import plot_work_precision
+from fastrock.running import registry
+from fastrock.cli.app import main
 
 KERNEL = {"rigid": "rigid", "flexible": "flexible", "wall": "rigid_wall", "friction": "rigid_friction",
           "foundation": "two_spring", "flexible-friction": "flexible_friction"}
@@ -22,10 +23,10 @@ KERNEL = {"rigid": "rigid", "flexible": "flexible", "wall": "rigid_wall", "frict
 def test_family_selects_its_kernel(model):
     body, effects = A._family(model)
     if "foundation" in effects:
-        from fastrock.foundation import foundation_spec
+        from fastrock.running.foundation import foundation_spec
         assert foundation_spec(body, effects["foundation"])[0].name == KERNEL[model]
     else:
-        assert models.select(body, **effects).name == KERNEL[model]
+        assert registry.select(body, **effects).name == KERNEL[model]
 
 
 def test_wall_and_friction_cases_exercise_the_effect():
@@ -82,7 +83,7 @@ def test_work_precision_wall_and_friction_small():
 def test_friction_grid_outcomes_count_slides():
     """The friction grid's outcomes are those of simulate: a safe run that slipped more than the
     tolerance is a "slide" (the reference and every setting are compared on that)."""
-    from fastrock.solver import Solver
+    from fastrock.running.solver import Solver
     body, eff = A._family("friction")
     safe, over, _ = A._cases(body, "pulse", "friction")
     res = A._run_set(body, safe, over, [safe, over], Solver(rtol=1e-6), 5.0, repeats=1, effects=eff)
@@ -103,17 +104,17 @@ def test_plot_measures_and_clock():
                            err_residual_slide=[1e-6, 1e-9, np.nan, np.nan], outcome_mismatch=0.0))
     assert A.default_measures(df) == ("err_max_rotation", "err_residual_slide")
     assert A.default_measures(df[df.model == "wall"]) == ("err_max_rotation",)
-    fig = A.plot_work_precision(df, clock="cpu")
+    fig = plot_work_precision(df, clock="cpu")
     axes = np.array(fig.axes).reshape(2, 2)
     assert axes[0, 0].get_xlabel() == "CPU time per run [s], 1 thread"
     assert axes[1, 0].get_ylabel() == A.MEASURE_LABELS["err_residual_slide"]
     assert [t.get_text() for t in axes[1, 1].texts] == ["n/a"]          # the wall has no slide
-    fig = A.plot_work_precision(df, "outcome_mismatch")
+    fig = plot_work_precision(df, "outcome_mismatch")
     assert len(fig.axes) == 2 and fig.axes[0].get_xlabel() == "time per run [s], 1 thread"
     with pytest.raises(ValueError, match="unknown measure"):
-        A.plot_work_precision(df, "err_nothing")
+        plot_work_precision(df, "err_nothing")
     with pytest.raises(ValueError, match="clock"):
-        A.plot_work_precision(df, clock="sundial")
+        plot_work_precision(df, clock="sundial")
 
 
 def test_cli_accuracy_friction(tmp_path, capsys):

@@ -22,8 +22,8 @@ def test_every_promised_name_is_exported_at_the_top_level():
 
 
 def test_top_level_names_are_the_modules_objects():
-    from fastrock.freerocking import fit_free_rocking
-    from fastrock.study import Study
+    from fastrock.analyses.freerocking.fitting import fit_free_rocking
+    from fastrock.studies.definition import Study
     assert fastrock.fit_free_rocking is fit_free_rocking and fastrock.Study is Study
 
 

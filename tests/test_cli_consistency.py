@@ -11,8 +11,8 @@ import pandas as pd
 import pytest
 
 import fastrock
-from fastrock import cli
-from fastrock.records import load_default_record
+from fastrock.cli import app as cli
+from fastrock.io.default_records import load_default_record
 
 WRITERS = ["spectrum", "simulate", "record", "rocking-spectrum", "accuracy", "run", "study", "fit"]
 ROOT = Path(__file__).resolve().parents[1]
@@ -157,7 +157,7 @@ def _record_folder(tmp_path):
 
 
 def test_rocking_spectrum_takes_a_folder_or_a_glob_in_any_letter_case(tmp_path, capsys):
-    from fastrock.rocking_spectrum import load_records
+    from fastrock.analyses.rocking_spectrum.inputs import load_records
     folder = _record_folder(tmp_path)
     names = [r.name for r in load_records(folder)]
     assert len(names) == 3 and not any("notes" in n for n in names)

@@ -18,7 +18,7 @@ from importlib import resources
 import pandas as pd
 import pytest
 
-from fastrock import cli
+from fastrock.cli import app as cli
 
 pytestmark = pytest.mark.slow
 
@@ -97,7 +97,7 @@ def test_study_keeps_its_chunks_and_exits_130(tmp_path):
                                    RUNS_DONE)
     assert rc == 130, err[-2000:]
     assert "chunks finished; wrote res with them" in err
-    from fastrock.study import load_results
+    from fastrock.studies.output import load_results
     df = load_results(tmp_path / "res")
     assert 0 < len(df) < 800
 
@@ -116,7 +116,7 @@ def test_accuracy_writes_the_finished_settings(tmp_path):
 
 
 def test_a_single_run_command_exits_130_with_one_line(monkeypatch, capsys, tmp_path):
-    S = sys.modules["fastrock.simulate"]   # the package attribute of that name is the function
+    S = sys.modules["fastrock.running.simulate"]   # the package attribute of that name is the function
 
     def stopped(*args, **kwargs):
         raise KeyboardInterrupt

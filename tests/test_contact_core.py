@@ -16,9 +16,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from fastrock import Friction, Pulse, RigidBlock, simulate
-from fastrock.excitation import to_header
-from fastrock.models import rigid_par
-from fastrock.solver import Solver
+from fastrock.model.excitation import to_header
+from fastrock.running.models import rigid_par
+from fastrock.running.solver import Solver
 from fastrock.kernels import contact as C
 from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from fastrock import Friction, FlexibleBody, Pulse, RigidBlock, Wall, overturning_spectrum, simulate
-from fastrock import registry
+from fastrock.running import registry
 
 BLOCK = RigidBlock.rectangle(0.2, 1.0)
 PULSES = [(amp, f, sign) for amp in (1.5, 3.0, 5.0) for f in (0.5, 2.0, 4.0) for sign in (1, -1)]

@@ -23,7 +23,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from fastrock import Friction, Pulse, RigidBlock, Wall, simulate
-from fastrock.excitation import to_header
+from fastrock.model.excitation import to_header
 from fastrock.kernels import contact as C
 from fastrock.kernels import layout as L
 
@@ -389,7 +389,7 @@ def run_any(par, pulse=None, y0=None, t_end=4.0, rtol=1e-10, cap=100_000, max_st
     """``test_contact_core.run`` that keeps a failed run (its history up to the failure): the
     energy checks hold for every stored step, whatever the status."""
     from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
-    from fastrock.solver import Solver
+    from fastrock.running.solver import Solver
     hdr, smp = to_header(BODY, pulse, None)
     opt = Solver(rtol=rtol, max_steps=max_steps).options(t_end, False)
     y = np.array(y0, float)

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from fastrock import FlexibleBody, Pulse, RigidBlock, simulate
-from fastrock.friction import Friction
+from fastrock.model.friction import Friction
 from fastrock.kernels import config
-from fastrock.wall import Wall
+from fastrock.model.wall import Wall
 
 FAMILIES = ["rigid", "wall", "friction", "flexible", "flexible_friction"]
 
@@ -64,13 +64,13 @@ def test_debug_kernels_find_no_energy_gain(family):
 @pytest.mark.skipif(not config.DEBUG, reason="the debug pass of .ci/run sets FASTROCK_DEBUG=1")
 def test_debug_check_catches_a_map_that_gains():
     """Positive control: a rigid kernel fed e = 1.5 (refused by the front end)."""
-    from fastrock import models
+    from fastrock.running import registry
     from fastrock.kernels import layout as L
     from fastrock.kernels import rigid as K
     from fastrock.kernels.hybrid import N_COUNTERS
-    from fastrock.solver import Solver
+    from fastrock.running.solver import Solver
     body = RigidBlock(0.2, 2.0)
-    spec = models.select(body, None, None)
+    spec = registry.select(body, None, None)
     par = spec.par.copy()
     par[K.P_E] = 1.5
     y = np.array([0.5 * body.alpha, 0.0])

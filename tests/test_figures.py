@@ -6,7 +6,7 @@ import pandas as pd
 import pytest
 
 import fastrock as fr
-from fastrock.plotting import OUTCOME_LABELS, plot_spectrum
+from fastrock.plotting.figures import OUTCOME_LABELS, plot_spectrum
 
 
 def _labels(ax):
@@ -64,7 +64,7 @@ def test_spectrum_legend_lists_every_class_with_units_on_the_axes():
 
 
 def test_rocking_spectrum_plot_tells_records_apart_and_names_the_bound():
-    from fastrock.rocking_spectrum import plot_rocking_spectrum
+    from fastrock.plotting.rocking_spectrum import plot_rocking_spectrum
     df = pd.DataFrame({"record": ["A", "A", "B", "B"], "wall": ["two-sided"] * 4,
                        "tp_over_tm": [2.0, 5.0, 3.0, 8.0], "beta": [0.8, 0.5, 0.7, 0.3],
                        "beta_bound": ["exact", "upper", "exact", "lower"]})

@@ -6,16 +6,19 @@ import warnings
 import numpy as np
 import pytest
 
-import fastrock.freerocking as fr
-from fastrock.freerocking import DefinitionWarning, fit_free_rocking, read_half_cycles_csv
+from fastrock.analyses.freerocking import csv_input
+from fastrock.analyses.freerocking import housner
+from fastrock.analyses.freerocking import yu2019
+from fastrock.analyses.freerocking.fitting import DefinitionWarning, fit_free_rocking
+from fastrock.analyses.freerocking.csv_input import read_half_cycles_csv
 
 ALPHA, THETA0, P, E = 0.25, 0.15, 3.0, 0.9
 
 
 def _series(definition, n=10, first=None):
-    first = fr._first_index(definition) if first is None else first
+    first = housner.first_index(definition) if first is None else first
     idx = np.arange(first, first + n)
-    return fr.housner_half_cycle_durations(THETA0, ALPHA, P, E, idx, definition), idx
+    return housner.housner_half_cycle_durations(THETA0, ALPHA, P, E, idx, definition), idx
 
 
 @pytest.mark.parametrize("truth", ["impact", "peak"])
@@ -58,11 +61,11 @@ def test_the_csv_states_its_definition_by_comment_or_column(tmp_path):
         assert read_half_cycles_csv(f).attrs["definition"] == "peak"
         with warnings.catch_warnings():
             warnings.simplefilter("error", DefinitionWarning)
-            fit = fr.fit_from_csv(f, theta0=THETA0, alpha=ALPHA)
+            fit = csv_input.fit_from_csv(f, theta0=THETA0, alpha=ALPHA)
         assert fit.definition == "peak" and fit.p == pytest.approx(P, rel=1e-6)
     assert read_half_cycles_csv(_csv(tmp_path)).attrs["definition"] is None
     with pytest.warns(DefinitionWarning, match="overrides"):
-        fr.fit_from_csv(_csv(tmp_path, "# definition: peak\n"), theta0=THETA0, alpha=ALPHA, definition="impact")
+        csv_input.fit_from_csv(_csv(tmp_path, "# definition: peak\n"), theta0=THETA0, alpha=ALPHA, definition="impact")
 
 
 @pytest.mark.parametrize("kw", [dict(definition_line="# definition: zigzag\n"),
@@ -73,9 +76,9 @@ def test_a_bad_or_contradictory_statement_is_refused(tmp_path, kw):
 
 
 def test_the_packaged_measurements_state_impact():
-    df = read_half_cycles_csv(fr._DATA_DIR / "yu2019_halfcycles.csv")
+    df = read_half_cycles_csv(yu2019._DATA_DIR / "yu2019_halfcycles.csv")
     assert df.attrs["definition"] == "impact"
     with warnings.catch_warnings():
         warnings.simplefilter("error", DefinitionWarning)
-        fit = fr.fit_from_csv(fr._DATA_DIR / "yu2019_halfcycles.csv", alpha=math.radians(14.8))
+        fit = csv_input.fit_from_csv(yu2019._DATA_DIR / "yu2019_halfcycles.csv", alpha=math.radians(14.8))
     assert fit.definition == "impact" and fit.definition_source == "given"

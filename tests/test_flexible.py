@@ -42,8 +42,8 @@ import fastrock as fr
 from fastrock import FlexibleBody, Pulse, RigidBlock
 from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
-from fastrock.models import flexible_par
-from fastrock.solver import Solver
+from fastrock.running.models import flexible_par
+from fastrock.running.solver import Solver
 
 ALPHA = 0.3
 P = 2.0

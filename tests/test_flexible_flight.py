@@ -32,13 +32,13 @@ from scipy.integrate import solve_ivp
 
 import fastrock as fr
 from fastrock import FlexibleBody, Friction, Pulse, Solver
-from fastrock import excitation as X
-from fastrock import registry
+from fastrock.model import excitation as X
+from fastrock.running import registry
 from fastrock.kernels import flexible_flight as K
 from fastrock.kernels import flexible_friction as KF
 from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
-from fastrock.models import flexible_flight_par, flexible_friction_par
+from fastrock.running.models import flexible_flight_par, flexible_friction_par
 
 ALPHA = 0.3
 P = 2.0

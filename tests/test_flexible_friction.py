@@ -25,11 +25,12 @@ import sympy as sp
 
 import fastrock as fr
 from fastrock import FlexibleBody, Friction, Pulse, SampledMotion
-from fastrock import excitation as X
+from fastrock.model import excitation as X
 from fastrock.kernels import flexible as KF
 from fastrock.kernels import flexible_friction as K
 from fastrock.kernels import layout as L
-from fastrock.models import flexible_friction_par, select
+from fastrock.running.models import flexible_friction_par
+from fastrock.running.registry import select
 
 ALPHA = 0.3
 P = 2.0
@@ -403,7 +404,7 @@ def test_bad_base_parameters_are_refused():
 def test_example_scene_runs_the_sliding_kernel():
     from pathlib import Path
 
-    from fastrock.scene import Scene
+    from fastrock.running.scene import Scene
     path = Path(__file__).resolve().parents[1] / "examples" / "scenes" / "flexible_sliding.toml"
     scene = Scene.from_toml(path)
     assert scene.kernel == "flexible_friction"
@@ -414,7 +415,7 @@ def test_example_scene_runs_the_sliding_kernel():
 
 
 def test_cli_spectrum_with_a_sliding_flexible_body(tmp_path):
-    from fastrock.cli import main
+    from fastrock.cli.app import main
     png, csv = tmp_path / "s.png", tmp_path / "s.csv"
     main(["spectrum", "--alpha", "0.3", "--omega-n-over-p", "9", "--zeta", "0.05", "--mu-s", "0.5",
           "--lift-off", "hold", "--n-amp", "3", "--n-freq", "3", "--png", str(png), "--csv", str(csv),
@@ -449,7 +450,7 @@ def test_impact_with_a_raised_base_keeps_both_horizontal_momenta():
     from fastrock.kernels import flexible_friction as K
     from fastrock.kernels import layout as L
     from fastrock.kernels.hybrid import N_COUNTERS
-    from fastrock.models import flexible_friction_par
+    from fastrock.running.models import flexible_friction_par
     rng = np.random.default_rng(4)
     for _ in range(500):
         b = FlexibleBody(alpha=rng.uniform(0.1, 0.5), p=rng.uniform(1, 4), omega_n_over_p=rng.uniform(2, 30),

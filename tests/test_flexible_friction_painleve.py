@@ -33,7 +33,7 @@ from fastrock.kernels import flexible as KF
 from fastrock.kernels import flexible_friction as K
 from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import N_COUNTERS
-from fastrock.models import flexible_friction_par
+from fastrock.running.models import flexible_friction_par
 
 from test_flexible_friction import constant_ground, lagrangian_model
 

@@ -62,7 +62,7 @@ def test_wall_out_of_reach_is_the_flexible_kernel(impact):
 # ------------------------------------------------------------------ 2. the map
 def _apply_map(b, wall, y, e_w):
     from fastrock.kernels import flexible_wall as K
-    from fastrock.models import flexible_wall_par
+    from fastrock.running.models import flexible_wall_par
     from fastrock.kernels.hybrid import N_COUNTERS
     par = flexible_wall_par(b, Wall(gap=wall, restitution=e_w))
     disc = np.zeros(L.N_DISC, dtype=np.int64)
@@ -226,7 +226,7 @@ def test_every_entry_point_runs_the_scene(tmp_path):
                     f'[wall]\ngap = {0.1 * b.H}\nrestitution = 0.7\n'
                     '[excitation]\namplitude = 3.0\nfrequency = 2.0\n'
                     'amplitude_unit = "g_tan_alpha"\nfrequency_unit = "omega_p/p"\n')
-    from fastrock.scene import Scene
+    from fastrock.running.scene import Scene
     sc = Scene.from_toml(toml)
     assert sc.kernel == "flexible_wall"
     rs = sc.run()
@@ -235,7 +235,7 @@ def test_every_entry_point_runs_the_scene(tmp_path):
 
 def test_cli_spectrum_with_a_flexible_body_and_a_wall(tmp_path):
     import pandas as pd
-    from fastrock import cli
+    from fastrock.cli import app as cli
     out = tmp_path / "s.csv"
     code = cli.main(["spectrum", "--alpha", "0.3", "--p", "2", "--omega-n-over-p", "9", "--zeta", "0.05",
                      "--wall-gap", "0.3", "--wall-restitution", "0.7", "--amp-min", "2", "--amp-max", "4",

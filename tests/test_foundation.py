@@ -19,13 +19,15 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 
 import fastrock as fr
-from fastrock import foundation as F
-from fastrock.foundation import (LinearVibration, SwitchingFoundation, TwoSpringFoundation,
-                                 block_inertia, foundation_half_cycles, make_predictor,
-                                 simulate_foundation, switching_predictor,
-                                 two_spring_predictor)
-from fastrock.freerocking import (fit_free_rocking, housner_amplitudes,
-                                  housner_half_cycle_durations, rocking_quarter_period)
+from fastrock.model import foundation as F
+from fastrock.model.foundation import (LinearVibration, SwitchingFoundation, TwoSpringFoundation,
+    block_inertia)
+from fastrock.analyses.foundation_predictors import (foundation_half_cycles, make_predictor,
+    switching_predictor, two_spring_predictor)
+from fastrock.running.foundation import foundation_spec, simulate_foundation
+from fastrock.analyses.freerocking.fitting import fit_free_rocking
+from fastrock.analyses.freerocking.housner import housner_amplitudes, housner_half_cycle_durations
+from fastrock.analyses.freerocking.periods import rocking_quarter_period
 from fastrock.kernels import foundation as K
 from fastrock.kernels import layout as L
 
@@ -118,7 +120,7 @@ def test_two_spring_rhs_matches_sympy_lagrangian():
         state = np.array([rng.normal(0, 1e-3), rng.normal(0, 0.01), rng.uniform(-0.3, 0.3),
                           rng.normal(0, 1.0)])
         a_g = rng.normal(0, 3.0)
-        spec, blk = F.foundation_spec(BODY, fnd, 2.5)
+        spec, blk = foundation_spec(BODY, fnd, 2.5)
         hdr = np.zeros(L.N_EXC)
         hdr[L.X_KIND] = L.EXC_RECTANGULAR
         hdr[L.X_AMP] = abs(a_g)
@@ -140,7 +142,7 @@ def test_two_spring_rhs_matches_sympy_lagrangian():
 
 def test_switching_contact_phase_equation():
     fnd = SwitchingFoundation(k_t=300.0, c_t=2.0)
-    spec, blk = F.foundation_spec(BODY, fnd, 1.0)
+    spec, blk = foundation_spec(BODY, fnd, 1.0)
     hdr = np.zeros(L.N_EXC)
     for th, om in ((0.001, 0.3), (-0.002, -1.0)):
         got = K.sw_contact_ddot(0.0, th, om, spec.par, hdr, np.zeros(1))
@@ -361,7 +363,7 @@ def test_rigid_scene_does_not_import_foundation_kernels():
                                  LinearVibration.from_vibration(BODY, 40.0, 0.1)],
                          ids=["two-spring", "switching", "linear"])
 def test_sweep_kernel_matches_simulate(fnd):
-    spec, blk = F.foundation_spec(BODY, fnd, 1.0)
+    spec, blk = foundation_spec(BODY, fnd, 1.0)
     hdr = np.zeros(L.N_EXC)
     opt = fr.Solver(rtol=1e-9).options(2.0, False)
     th0s = [0.02, 0.05, -0.1]

@@ -23,30 +23,20 @@ from hypothesis import strategies as st
 from scipy.integrate import quad, solve_ivp
 from scipy.special import ellipk
 
-from fastrock import freerocking as fr
-from fastrock.freerocking import (
-    YU2019_BLOCK,
-    FreeRockingFit,
-    accelerometer,
-    add_fit_subcommand,
-    fit_free_rocking,
-    fit_from_csv,
-    half_cycles,
-    housner_amplitudes,
-    housner_half_cycle_durations,
-    load_yu2019,
-    pendulum_period,
-    pendulum_period_small,
-    plot_fit,
-    plot_period_vs_angle,
-    read_half_cycles_csv,
-    rocking_period_exact,
-    rocking_period_linear,
-    run_fit_command,
-    vibration_period,
-)
+from fastrock.analyses.freerocking import yu2019
+from fastrock.analyses.freerocking.yu2019 import YU2019_BLOCK, load_yu2019
+from fastrock.analyses.freerocking.fitting import FreeRockingFit, fit_free_rocking
+from fastrock.analyses.freerocking.accelerometer import accelerometer
+from fastrock.cli.fit import add_fit_subcommand, run_fit_command
+from fastrock.analyses.freerocking.csv_input import fit_from_csv, read_half_cycles_csv
+from fastrock.analyses.freerocking.half_cycles import half_cycles
+from fastrock.analyses.freerocking.housner import (housner_amplitudes, housner_half_cycle_durations,
+                                                   peak_ratio_from_restitution, restitution_from_peak_ratio)
+from fastrock.analyses.freerocking.periods import (ellipk_agm, pendulum_period, pendulum_period_small,
+    rocking_period_exact, rocking_period_linear, vibration_period)
+from fastrock.plotting.freerocking import plot_fit, plot_period_vs_angle
 
-YU_CSV = fr._DATA_DIR / "yu2019_halfcycles.csv"
+YU_CSV = yu2019._DATA_DIR / "yu2019_halfcycles.csv"
 YU_ALPHA = math.radians(YU2019_BLOCK["alpha_deg"])
 G = 9.80665  # fastrock.constants.G_STANDARD, the default g of accelerometer()
 
@@ -222,7 +212,7 @@ def test_pendulum_periods():
     th = np.array([1e-3, 0.1, 0.5, 1.0, 2.0, 3.0])
     np.testing.assert_allclose(pendulum_period(th, omega),
                                4 * ellipk(np.sin(th / 2) ** 2) / omega, rtol=1e-14)
-    np.testing.assert_allclose(fr.ellipk_agm([0.0, 0.5, 0.999]),
+    np.testing.assert_allclose(ellipk_agm([0.0, 0.5, 0.999]),
                                ellipk(np.array([0.0, 0.5, 0.999]) ** 2), rtol=1e-14)
     # small-angle series: error ~ 173/737280 theta^6 T_L
     small = np.array([0.05, 0.1, 0.3, 0.6, 1.0])
@@ -276,9 +266,9 @@ def test_restitution_roundtrip_and_monotone_decay(alpha, ratio, e):
     amps = housner_amplitudes(theta0, alpha, e, 8)
     assert np.all(np.isfinite(amps)) and np.all(amps > 0)
     assert np.all(np.diff(amps) <= 1e-15 * alpha)
-    r = fr.peak_ratio_from_restitution(theta0, alpha, e)
+    r = peak_ratio_from_restitution(theta0, alpha, e)
     assert r == pytest.approx(amps[1] / amps[0], rel=1e-12)
-    assert fr.restitution_from_peak_ratio(r, theta0, alpha) == pytest.approx(e, rel=1e-8)
+    assert restitution_from_peak_ratio(r, theta0, alpha) == pytest.approx(e, rel=1e-8)
 
 
 def test_housner_small_amplitudes_stay_accurate():
@@ -811,7 +801,7 @@ def test_cli_group_selection_and_errors(tmp_path, capsys):
 
 def test_cli_param_option_parsing_and_errors(capsys):
     import argparse
-    from fastrock.freerocking import _parse_params, add_fit_subcommand
+    from fastrock.cli.fit import _parse_params, add_fit_subcommand
     assert _parse_params(["p=4.7", " omega = 40"]) == {"p": 4.7, "omega": 40.0}
     for bad in (["p"], ["=3"], ["p=abc"], ["p=nan"]):
         with pytest.raises(ValueError, match="--param"):

@@ -37,11 +37,11 @@ from hypothesis import strategies as st
 
 import fastrock as fr
 from fastrock import Friction, Pulse, RigidBlock
-from fastrock.bodies import G_STANDARD as G0
+from fastrock.constants import G_STANDARD as G0
 from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
-from fastrock.models import rigid_friction_par
-from fastrock.solver import Solver
+from fastrock.running.models import rigid_friction_par
+from fastrock.running.solver import Solver
 
 
 def rect_pulse(amplitude, duration, unit="g", sign=1, t_start=0.0):
@@ -754,10 +754,10 @@ def test_good_friction_defaults():
 
 def test_friction_with_flexible_body_selects_the_sliding_kernel():
     fb = fr.FlexibleBody(alpha=0.3, p=2.0, omega_n_over_p=9.0, zeta=0.05)
-    from fastrock.models import select
+    from fastrock.running.registry import select
     assert select(fb, friction=Friction(0.5)).name == "flexible_friction"
     # mu = inf is no friction: allowed for any body (selection only: nothing to compile)
-    from fastrock.models import select
+    from fastrock.running.registry import select
     assert select(fb, friction=Friction(math.inf)).name == "flexible"
 
 

@@ -17,10 +17,10 @@ import pytest
 import fastrock as fr
 import hardcases as H
 from fastrock import Friction, Pulse, RigidBlock
-from fastrock.bodies import G_STANDARD as G0
+from fastrock.constants import G_STANDARD as G0
 from fastrock.kernels import layout as L
-from fastrock.models import rigid_friction_par
-from fastrock.solver import Solver
+from fastrock.running.models import rigid_friction_par
+from fastrock.running.solver import Solver
 from test_friction import HF_BODY, HF_GRID, SLIDER, definite, header, one_sine
 
 STATE = ("theta", "theta_dot", "d", "d_dot")
@@ -654,7 +654,7 @@ def test_contact_event_rates_are_the_derivatives():
     (so the driver finds a dip of mu_s N - |F| or N between two step ends): against central differences along the flow
     (kernel rhs) at 300 random states of ROCK and SLIDE_ROCK, with a horizontal one-sine and a
     vertical half-sine acting (a_g' and a_v' enter), to 1e-6 relative."""
-    from fastrock.excitation import to_header
+    from fastrock.model.excitation import to_header
     from fastrock.kernels import friction as FK
     body = RigidBlock.rectangle(0.3, 1.1)
     par = rigid_friction_par(body, Friction(0.7, 0.5))
@@ -692,7 +692,7 @@ def test_tie_mu_s_at_b_over_h_never_loops(bh):
     before the block has lifted (theta = theta' = 0) now takes the flat rule of physics.md 4.3
     (slide-rock only if mu_k > b/h and it lifts the corner, else a flat slide, which cannot tip
     when mu_k <= b/h)."""
-    from fastrock.spectrum import overturning_spectrum
+    from fastrock.analyses.spectrum import overturning_spectrum
     body = RigidBlock.rectangle(bh, 1.0, e=None if bh < 0.8 else 0.3)
     for eps in (0.0, 1e-12, -1e-12, 1e-9):
         for k in (1.0, 0.9):

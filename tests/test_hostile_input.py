@@ -29,13 +29,15 @@ import numpy as np
 import pytest
 
 import fastrock as fr
-from fastrock import cli
-from fastrock.foundation import (LinearVibration, SwitchingFoundation, TwoSpringFoundation, make_predictor,
-                                 simulate_foundation)
-from fastrock.records import GroundMotion, read_record
-from fastrock.scene import Scene
-from fastrock.solver import Solver
-from fastrock.sweep import run_sweep as unstubbed_run_sweep
+from fastrock.cli import app as cli
+from fastrock.model.foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation
+from fastrock.analyses.foundation_predictors import make_predictor
+from fastrock.running.foundation import simulate_foundation
+from fastrock.io.ground_motion import GroundMotion
+from fastrock.io.readers import read_record
+from fastrock.running.scene import Scene
+from fastrock.running.solver import Solver
+from fastrock.running.sweep import run_sweep as unstubbed_run_sweep
 
 NAN = math.nan
 INF = math.inf
@@ -58,10 +60,11 @@ class Hang(AssertionError):
 def no_kernel_no_hang(monkeypatch):
     # the modules, not the functions of the same name that fastrock/__init__.py exports
     mod = {m: importlib.import_module(f"fastrock.{m}")
-           for m in ("sweep", "simulate", "foundation", "study", "spectrum", "rocking_spectrum")}
-    for m in ("sweep", "simulate", "foundation", "study"):
+           for m in ("running.sweep", "running.simulate", "running.foundation", "studies.worker",
+                     "analyses.spectrum", "analyses.rocking_spectrum.engine")}
+    for m in ("running.sweep", "running.simulate", "running.foundation", "studies.worker"):
         monkeypatch.setattr(mod[m], "call_kernel", _refuse)
-    for m in ("sweep", "spectrum", "rocking_spectrum"):
+    for m in ("running.sweep", "analyses.spectrum", "analyses.rocking_spectrum.engine"):
         monkeypatch.setattr(mod[m], "run_sweep", _refuse)
 
     def alarm(signum, frame):
@@ -105,7 +108,7 @@ def spectrum(amps=(1.0,), freqs=(1.0,), **kw):
 
 
 def rocking(**kw):
-    from fastrock.rocking_spectrum import rocking_spectrum
+    from fastrock.analyses.rocking_spectrum.definitions import rocking_spectrum
     kw.setdefault("slenderness", [0.2])
     kw.setdefault("half_widths", [0.3])
     kw.setdefault("walls", [None])
@@ -113,25 +116,26 @@ def rocking(**kw):
 
 
 def study(**kw):
-    from fastrock.study import Study
+    from fastrock.studies.definition import Study
     args = dict(records=[GM], bodies=[RECT], levels=[0.1, 0.2])
     args.update(kw)
     return Study(**args).prepare()
 
 
 def run_study(tmp, **kw):
-    from fastrock.study import Study, run_study
+    from fastrock.studies.definition import Study
+    from fastrock.studies.run import run_study
     return run_study(Study(records=[GM], bodies=[RECT], levels=[0.1]), tmp, progress=False, **kw)
 
 
 def mss(**kw):
-    from fastrock.rocking_spectrum import minimum_stable_slenderness
+    from fastrock.analyses.rocking_spectrum.bisection import minimum_stable_slenderness
     kw.setdefault("b", 0.3)
     return minimum_stable_slenderness(GM, **kw)
 
 
 def sim_record(**kw):
-    from fastrock.rocking_spectrum import simulate_record
+    from fastrock.analyses.rocking_spectrum.single_runs import simulate_record
     return simulate_record(RECT, GM, **kw)
 
 
@@ -142,19 +146,19 @@ def _fragility_frame():
 
 
 def fragility(**kw):
-    from fastrock.study import fit_fragility
+    from fastrock.analyses.fragility import fit_fragility
     return fit_fragility(_fragility_frame(), **kw)
 
 
 def work_precision(**kw):
-    from fastrock.accuracy import work_precision
+    from fastrock.analyses.accuracy import work_precision
     args = dict(models=("rigid",), excitations=("pulse",), rtols=(1e-6,), dts=(1e-3,), progress=False)
     args.update(kw)
     return work_precision(**args)
 
 
 def free(fn, *args, **kw):
-    from fastrock import freerocking
+    from fastrock.analyses.freerocking import fitting as freerocking
     return getattr(freerocking, fn)(*args, **kw)
 
 
@@ -586,7 +590,7 @@ RECORD_FILES = [
 @pytest.mark.parametrize("content,kw,exc,pattern", [pytest.param(c, k, e, p, id=i) for i, c, k, e, p in
                                                     RECORD_FILES])
 def test_record_file_refused(tmp_path, content, kw, exc, pattern):
-    from fastrock.records import RecordFormatError
+    from fastrock.io.ground_motion import RecordFormatError
     path = tmp_path / "record.txt"
     if isinstance(content, bytes):
         path.write_bytes(content)
@@ -697,7 +701,7 @@ STUDIES = [
 
 @pytest.mark.parametrize("text,pattern", [pytest.param(t, p, id=i) for i, t, p in STUDIES])
 def test_study_file_refused(tmp_path, text, pattern):
-    from fastrock.study import Study, StudyError
+    from fastrock.studies.definition import Study, StudyError
     path = tmp_path / "study.toml"
     path.write_text(text)
     with pytest.raises(StudyError, match=pattern):

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from fastrock import FlexibleBody, Pulse, RigidBlock, SampledMotion, overturning_spectrum, simulate
-from fastrock.records import load_default_record
+from fastrock.io.default_records import load_default_record
 
 
 def test_late_pulse_gives_the_shifted_answer():

@@ -6,7 +6,7 @@ import pandas as pd
 import pytest
 from scipy import stats
 
-import fastrock.study as S
+import fastrock.analyses.fragility as S
 import probit_reference as R
 
 

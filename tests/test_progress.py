@@ -3,7 +3,7 @@ lines, no carriage returns, when stderr is a log file."""
 import numpy as np
 import pytest
 
-from fastrock import sweep
+from fastrock.running import sweep
 from fastrock.kernels import layout as L
 
 

@@ -10,13 +10,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from fastrock.records import (
-    G_STANDARD,
-    GroundMotion,
-    RecordFormatError,
-    load_default_record,
-    read_record,
-)
+from fastrock.constants import G_STANDARD
+from fastrock.io.ground_motion import GroundMotion, RecordFormatError
+from fastrock.io.default_records import load_default_record
+from fastrock.io.readers import read_record
 
 
 from shared_data import records_dir
@@ -550,7 +547,7 @@ def test_conflicting_header_units(tmp_path):
 
 # Random samples may be all zero or tiny: the PGA plausibility warning
 # (RecordUnitWarning) is right for them and not what this test checks.
-@pytest.mark.filterwarnings("ignore::fastrock.records.RecordUnitWarning")
+@pytest.mark.filterwarnings("ignore::fastrock.io.ground_motion.RecordUnitWarning")
 @settings(max_examples=40, deadline=None)
 @given(
     values=st.lists(

@@ -12,14 +12,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fastrock.records import (
-    G_STANDARD,
-    PGA_PLAUSIBLE_G,
-    RecordFormatError,
-    RecordUnitWarning,
-    load_default_record,
-    read_record,
-)
+from fastrock.constants import G_STANDARD
+from fastrock.io.ground_motion import PGA_PLAUSIBLE_G, RecordFormatError, RecordUnitWarning
+from fastrock.io.default_records import load_default_record
+from fastrock.io.readers import read_record
 
 
 from shared_data import records_dir
@@ -375,9 +371,9 @@ def test_numpy_integer_column_and_single_column(tmp_path):
 def test_column_and_decimal_reach_every_entry_point(tmp_path, capsys):
     """The CLI (--column, --decimal), a TOML scene and a study's record table
     pass the options on to read_record."""
-    from fastrock import cli
-    from fastrock.scene import Scene
-    from fastrock.study import _load
+    from fastrock.cli import app as cli
+    from fastrock.running.scene import Scene
+    from fastrock.studies.definition import _load
     p = _write(tmp_path, "three.txt", _three_columns(time_first=True))
     q = _write(tmp_path, "comma.txt", "".join(f"{_comma(v)}\n" for v in ACC_G))
     assert cli.main(["record", str(p), "--unit", "g", "--png", str(tmp_path / "r.png")]) == 2

@@ -8,9 +8,10 @@ import math
 import numpy as np
 import pytest
 
-from fastrock import FlexibleBody, Friction, Pulse, RigidBlock, SampledMotion, Wall, overturning_spectrum, simulate
-from fastrock import registry
-from fastrock.foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation, block_inertia
+from fastrock import FlexibleBody, Friction, Pulse, RigidBlock, SampledMotion, Wall, overturning_spectrum
+from fastrock import simulate
+from fastrock.running import registry
+from fastrock.model.foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation, block_inertia
 
 BLOCK = RigidBlock.rectangle(0.15, 0.6)
 FLEX = FlexibleBody(0.2, 2.0, 10.0)
@@ -41,7 +42,7 @@ def test_a_scene_selects_exactly_its_model(body, kw, name):
 
 
 def test_every_entry_names_its_kernels_and_columns():
-    from fastrock.spectrum import SPECTRUM_COLUMNS
+    from fastrock.analyses.spectrum import SPECTRUM_COLUMNS
     assert set(registry.MODELS) == {"rigid", "rigid_wall", "rigid_friction", "contact", "flexible",
                                     "flexible_friction", "flexible_wall", "flexible_flight", "two_spring", "switching",
                                     "linear_sdof"}
@@ -54,8 +55,8 @@ def test_every_entry_names_its_kernels_and_columns():
 
 
 def test_cli_and_toml_know_every_option_an_entry_names():
-    from fastrock import cli
-    from fastrock.scene import Scene
+    from fastrock.cli import app as cli
+    from fastrock.running.scene import Scene
     spectrum = next(a for a in cli.build_parser()._subparsers._group_actions[0].choices.items()
                     if a[0] == "spectrum")[1]
     options = {s for a in spectrum._actions for s in a.option_strings}
@@ -90,7 +91,7 @@ def test_a_model_cannot_be_registered_twice():
 
 # ------------------------------------------------------------- the foundation family
 def test_simulate_with_a_foundation_is_simulate_foundation():
-    from fastrock.foundation import simulate_foundation
+    from fastrock.running.foundation import simulate_foundation
     fnd = TwoSpringFoundation.from_vibration(BLOCK, 60.0, 0.05)
     pulse = Pulse(2.0, 1.5, amplitude_unit="g_tan_alpha")
     a = simulate(BLOCK, pulse, foundation=fnd, mass=2.0)
@@ -178,7 +179,7 @@ def test_spectrum_takes_a_vertical_pulse():
 
 def test_a_toml_scene_runs_a_foundation(tmp_path):
     from pathlib import Path
-    from fastrock.scene import Scene
+    from fastrock.running.scene import Scene
     ex = Path(__file__).resolve().parents[1] / "examples" / "scenes" / "foundation_pulse.toml"
     sc = Scene.from_toml(ex)
     assert sc.kernel == "two_spring" and sc.mass == 100.0
@@ -196,7 +197,7 @@ def test_a_toml_scene_runs_a_foundation(tmp_path):
 
 
 def test_the_cli_runs_a_foundation_spectrum(tmp_path, capsys):
-    from fastrock import cli
+    from fastrock.cli import app as cli
     import pandas as pd
     out = [f"--png={tmp_path / 'f.png'}", f"--csv={tmp_path / 'f.csv'}", "--quiet"]
     rc = cli.main(["spectrum", "--b", "0.15", "--h", "0.6", "--foundation", "two-spring", "--foundation-omega",
@@ -212,7 +213,7 @@ def test_the_cli_runs_a_foundation_spectrum(tmp_path, capsys):
 
 
 def test_a_vertical_record_must_match_the_horizontal_one():
-    from fastrock.records import load_default_record
+    from fastrock.io.default_records import load_default_record
     rec = load_default_record()
     h = SampledMotion.from_record(rec)
     v_same = SampledMotion(0.3 * rec.acc, rec.dt)

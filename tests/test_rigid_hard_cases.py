@@ -275,7 +275,7 @@ def test_grazing_impact_inside_one_fixed_step():
 def test_record_peak_at_the_uplift_threshold(factor):
     """A record scaled so that its peak sits on g tan(alpha) (up to a few ulp) must not
     end in a transition loop: a touch is no uplift, a real exceedance rocks and settles."""
-    from fastrock.records import load_default_record
+    from fastrock.io.default_records import load_default_record
     rec = load_default_record()
     body = fr.RigidBlock.rectangle(b=0.25, h=1.25)
     scale = body.g * math.tan(body.alpha) / rec.pga * factor

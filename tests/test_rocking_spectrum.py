@@ -11,14 +11,21 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from fastrock import Pulse, RigidBlock, SampledMotion, simulate
-from fastrock.records import G_STANDARD, GroundMotion, load_default_record, read_record
+from fastrock.constants import G_STANDARD
+from fastrock.io.ground_motion import GroundMotion
+from fastrock.io.default_records import load_default_record
+from fastrock.io.readers import read_record
 # the module (``fastrock.rocking_spectrum`` may also name the function once
 # the package exports it; import_module always returns the module)
-RS = importlib.import_module("fastrock.rocking_spectrum")
-from fastrock.rocking_spectrum import (
-    DEFAULT_HALF_WIDTHS, DEFAULT_SLENDERNESS, SPECTRUM_COLUMNS, minimum_stable_on_grid,
-    minimum_stable_slenderness, plot_rocking_spectrum, rocking_spectrum, rocking_spectrum_runs,
-    simulate_record, summarize_runs, upper_bound_beta)
+RS = importlib.import_module("fastrock.analyses.rocking_spectrum.inputs")
+RS_ENGINE = importlib.import_module("fastrock.analyses.rocking_spectrum.engine")
+from fastrock.analyses.rocking_spectrum.engine import (DEFAULT_HALF_WIDTHS, DEFAULT_SLENDERNESS,
+    rocking_spectrum_runs)
+from fastrock.analyses.rocking_spectrum.definitions import (SPECTRUM_COLUMNS,
+    minimum_stable_on_grid, rocking_spectrum, summarize_runs, upper_bound_beta)
+from fastrock.analyses.rocking_spectrum.bisection import minimum_stable_slenderness
+from fastrock.plotting.rocking_spectrum import plot_rocking_spectrum
+from fastrock.analyses.rocking_spectrum.single_runs import simulate_record
 
 
 from shared_data import records_dir
@@ -261,13 +268,13 @@ def test_summarize_incomplete_cells():
 
 
 def test_interrupted_sweep_marks_cells_incomplete(monkeypatch, el_centro):
-    real = RS.run_sweep
+    real = RS_ENGINE.run_sweep
 
     def half(kernel, Y0, *a, **kw):
         status, MET, YF, done = real(kernel, Y0, *a, **kw)
         return status, MET, YF, Y0.shape[0] // 2
 
-    monkeypatch.setattr(RS, "run_sweep", half)
+    monkeypatch.setattr(RS_ENGINE, "run_sweep", half)
     table = rocking_spectrum(el_centro, [0.1, 0.2, 0.3], [0.2, 0.5], walls=(None,),
                              progress=False)
     assert table.attrs["interrupted"]
@@ -492,7 +499,7 @@ def test_plot_marks_bounds_hollow(small_study):
 
 # ----------------------------------------------------- CLI
 def test_cli_record_default(capsys, tmp_path):
-    from fastrock.cli import main
+    from fastrock.cli.app import main
     png = tmp_path / "rec.png"
     csv = tmp_path / "hist.csv"
     assert main(["record", "--png", str(png), "--csv", str(csv)]) == 0
@@ -507,7 +514,7 @@ def test_cli_record_default(capsys, tmp_path):
 
 
 def test_cli_record_fixed_step_and_block(capsys, tmp_path):
-    from fastrock.cli import main
+    from fastrock.cli.app import main
     assert main(["record", "--b", "0.15", "--h", "0.75", "--dt", "record",
                  "--png", str(tmp_path / "a.png")]) == 0
     out = capsys.readouterr().out
@@ -517,7 +524,7 @@ def test_cli_record_fixed_step_and_block(capsys, tmp_path):
 
 @needs_records
 def test_cli_record_file_needs_unit(capsys, tmp_path):
-    from fastrock.cli import main
+    from fastrock.cli.app import main
     f = str(RECORDS / "Northridge_Sylmar_County.dat")
     assert main(["record", f, "--png", str(tmp_path / "s.png")]) == 2
     assert "unit" in capsys.readouterr().err
@@ -527,7 +534,7 @@ def test_cli_record_file_needs_unit(capsys, tmp_path):
 
 @needs_records
 def test_cli_rocking_spectrum_writes_csv_png(capsys, tmp_path):
-    from fastrock.cli import main
+    from fastrock.cli.app import main
     png, csv = tmp_path / "rs.png", tmp_path / "rs.csv"
     assert main(["rocking-spectrum", str(RECORDS / "RIO270.AT2"), "--n-slenderness", "5",
                  "--n-sizes", "3", "--walls", "two-sided", "--png", str(png), "--csv", str(csv)]) == 0
@@ -542,7 +549,7 @@ def test_cli_rocking_spectrum_writes_csv_png(capsys, tmp_path):
 def test_default_walls_follow_the_wall_model():
     walls = RS.default_walls()
     try:
-        import fastrock.wall  # noqa: F401
+        import fastrock.model.wall  # noqa: F401
         import fastrock.kernels.wall  # noqa: F401
     except ImportError:
         assert walls == (None,)
@@ -551,9 +558,9 @@ def test_default_walls_follow_the_wall_model():
 
 
 def test_rocking_spectrum_with_walls(el_centro):
-    pytest.importorskip("fastrock.wall")
+    pytest.importorskip("fastrock.model.wall")
     pytest.importorskip("fastrock.kernels.wall")
-    from fastrock.wall import Wall
+    from fastrock.model.wall import Wall
     s = np.linspace(0.1, 0.3, 5)
     table, runs = rocking_spectrum(el_centro, s, [0.2, 0.6], walls=(None, 0.01, Wall(0.10)),
                                    progress=False, return_runs=True)
@@ -576,7 +583,7 @@ def test_rocking_spectrum_with_walls(el_centro):
 
 
 def test_cli_record_single_column_file_needs_unit_and_dt(capsys, tmp_path):
-    from fastrock.cli import main
+    from fastrock.cli.app import main
     f = tmp_path / "pulse.txt"
     t = np.arange(201) * 0.005
     np.savetxt(f, 0.4 * np.sin(2 * np.pi * t))           # one 1 Hz sine, 0.4 g

@@ -18,13 +18,18 @@ import pandas as pd
 import pytest
 
 from fastrock import RigidBlock, Solver
-from fastrock.records import G_STANDARD, GroundMotion, load_default_record
-from fastrock.study import (
-    DEFAULT_CHUNK_SIZE, RESULT_COLUMNS, FragilityFit, Study, StudyError, _Plan, _write_chunk,
-    fit_fragility, load_results, plot_fragility, run_study)
+from fastrock.constants import G_STANDARD
+from fastrock.io.ground_motion import GroundMotion
+from fastrock.io.default_records import load_default_record
+from fastrock.studies.output import DEFAULT_CHUNK_SIZE, write_chunk, load_results
+from fastrock.studies.plan import RESULT_COLUMNS, Plan
+from fastrock.analyses.fragility import FragilityFit, fit_fragility
+from fastrock.studies.definition import Study, StudyError
+from fastrock.plotting.fragility import plot_fragility
+from fastrock.studies.run import run_study
 
 try:
-    from fastrock.wall import Wall
+    from fastrock.model.wall import Wall
 except ImportError:   # the wall model may not have landed
     Wall = None
 
@@ -63,7 +68,7 @@ def test_chunks_are_deterministic(records):
     p1 = _study(records).prepare()
     p2 = _study(list(records)).prepare()
     assert p1.hash == p2.hash
-    a, b = _Plan(p1, 5), _Plan(p2, 5)
+    a, b = Plan(p1, 5), Plan(p2, 5)
     assert [c.id for c in a.chunks] == [c.id for c in b.chunks]
     for c1, c2 in zip(a.chunks, b.chunks):
         np.testing.assert_array_equal(c1.rows, c2.rows)
@@ -113,7 +118,7 @@ def test_parquet_round_trip_and_manifest(records, tmp_path):
     # write / read one frame: identical, dtypes included
     sub = df.iloc[:4].reset_index(drop=True)
     (tmp_path / "rt" / "results").mkdir(parents=True)
-    _write_chunk(tmp_path / "rt", "x", sub, "h")
+    write_chunk(tmp_path / "rt", "x", sub, "h")
     back = pd.read_parquet(tmp_path / "rt" / "results" / "chunk-x.parquet")
     _assert_identical(sub, back)
     assert not list((out / "results").glob(".*.tmp"))
@@ -124,7 +129,7 @@ def test_im_columns(records):
     rec = records[0]
     for measure, col in (("pga", "pga_g"), ("pgv", "pgv"),
                          ("pga_over_g_tan_alpha", "pga_over_g_tan_alpha"), ("scale", "scale")):
-        plan = _Plan(_study(records, measure=measure).prepare(), 8)
+        plan = Plan(_study(records, measure=measure).prepare(), 8)
         np.testing.assert_array_equal(plan.im.get(col, plan.scale), plan.level)   # exactly
         for i in (0, 5, 23):
             r, b = records[plan.rec[i]], BODIES[plan.body[i]]
@@ -135,13 +140,13 @@ def test_im_columns(records):
             assert plan.im["pga_over_g_tan_alpha"][i] == pytest.approx(
                 np.max(np.abs(acc)) / (b.g * math.tan(b.alpha)), rel=1e-14)
             assert plan.im["omega_p_over_p"][i] == pytest.approx(2 * math.pi / r.mean_period / b.p)
-    plan = _Plan(_study(records, measure="pga").prepare(), 8)
+    plan = Plan(_study(records, measure="pga").prepare(), 8)
     assert plan.scale[0] == pytest.approx(0.1 * G_STANDARD / rec.pga)
 
 
 def test_scaled_rows_match_rocking_spectrum_runs(records, tmp_path):
     """The header's scale factor gives the run of the pre-scaled record."""
-    from fastrock.rocking_spectrum import rocking_spectrum_runs
+    from fastrock.analyses.rocking_spectrum.engine import rocking_spectrum_runs
     df = run_study(_study(records[:1], bodies=BODIES[:1]), tmp_path / "s", progress=False)
     for _, row in df.iterrows():
         ref = rocking_spectrum_runs([records[0].scaled(row["scale"])], slenderness=[0.2],
@@ -334,7 +339,7 @@ def test_fragility_threshold_and_errors(tmp_path):
 
 # ------------------------------------------------------------- TOML / CLI
 def test_toml_and_cli(tmp_path, capsys):
-    from fastrock.cli import main
+    from fastrock.cli.app import main
     (tmp_path / "s.toml").write_text(
         'name = "tiny"\nmeasure = "pga_over_g_tan_alpha"\nlevels = {start = 1.0, stop = 4.0, num = 4}\n'
         't_after = 2.0\nrecords = ["default"]\n'

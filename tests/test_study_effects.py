@@ -10,9 +10,11 @@ import numpy as np
 import pytest
 
 from fastrock import Friction, RigidBlock, SampledMotion, Wall, simulate
-from fastrock.foundation import TwoSpringFoundation
-from fastrock.records import G_STANDARD, load_default_record
-from fastrock.study import FORMAT, Study, StudyError, _canon, _study_hash, run_study
+from fastrock.model.foundation import TwoSpringFoundation
+from fastrock.constants import G_STANDARD
+from fastrock.io.default_records import load_default_record
+from fastrock.studies.definition import FORMAT, Study, StudyError, _canon, _study_hash
+from fastrock.studies.run import run_study
 
 pytest.importorskip("pyarrow")
 

@@ -5,8 +5,11 @@ import pandas as pd
 import pytest
 
 from fastrock import RigidBlock, Wall
-from fastrock.records import GroundMotion, load_default_record
-from fastrock.study import Study, StudyError, fit_fragility, run_study
+from fastrock.io.ground_motion import GroundMotion
+from fastrock.io.default_records import load_default_record
+from fastrock.studies.definition import Study, StudyError
+from fastrock.analyses.fragility import fit_fragility
+from fastrock.studies.run import run_study
 
 pytest.importorskip("pyarrow")
 

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import fastrock as fr
-from fastrock import cli
+from fastrock.cli import app as cli
 
 NAN = math.nan
 DENORMAL = 1e-310

@@ -594,7 +594,7 @@ def test_wall_api():
 
 
 def test_cli_wall_options(tmp_path, capsys):
-    from fastrock.cli import main
+    from fastrock.cli.app import main
     assert main(["simulate", "--b", "0.5", "--h", "2.5", "--amplitude", "0.5", "--amplitude-unit", "g",
                  "--frequency", "0.5", "--frequency-unit", "Hz", "--wall-gap", "0.1", "--wall-restitution",
                  "0.8", "--events", str(tmp_path / "ev.csv")]) == 0

@@ -7,8 +7,8 @@ import tempfile
 
 import pytest
 
-from fastrock import registry
-from fastrock.warmup import TYPICAL_COMPILE_SECONDS, resolve
+from fastrock.running import registry
+from fastrock.running.warmup import TYPICAL_COMPILE_SECONDS, resolve
 
 
 def test_every_model_has_a_warm_up_scene_and_a_typical_time():
@@ -22,7 +22,7 @@ def test_every_model_has_a_warm_up_scene_and_a_typical_time():
 @pytest.mark.slow
 def test_warmup_compiles_every_model():
     code = ("import json, sys, numba\n"
-            "from fastrock.warmup import warmup\n"
+            "from fastrock.running.warmup import warmup\n"
             "from fastrock import registry\n"
             "done = [n for n, _s in warmup()]\n"
             "ready = {n: bool(registry.MODELS[n].load().__dict__[registry.MODELS[n].sweep_entry].signatures)"

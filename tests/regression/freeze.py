@@ -76,8 +76,8 @@ class O:
 
     def build(self):
         import fastrock as fr
-        from fastrock import foundation as F
-        from fastrock import records as R
+        from fastrock.model import foundation as F
+        from fastrock.io import default_records as R
         ctors = {
             "RigidBlock": fr.RigidBlock,
             "RigidBlock.rectangle": fr.RigidBlock.rectangle,
@@ -178,9 +178,9 @@ STATE_COLUMNS = ("theta", "theta_dot", "u", "u_dot", "d", "d_dot", "y", "y_dot")
 
 def _single_row(call, kw):
     import fastrock as fr
-    from fastrock import foundation as F
+    from fastrock.running import foundation as F
     import importlib
-    RS = importlib.import_module("fastrock.rocking_spectrum")   # the module: fastrock.rocking_spectrum is the function
+    RS = importlib.import_module("fastrock.analyses.rocking_spectrum.single_runs")
     fn = {"simulate": fr.simulate, "simulate_foundation": F.simulate_foundation,
           "simulate_record": RS.simulate_record}[call]
     built = {k: build(v) for k, v in kw.items()}
@@ -442,12 +442,12 @@ _RS_TEXT = ", ".join(f"{k}={describe(v)}" for k, v in _RS.items())
 
 
 def _rocking_runs():
-    from fastrock.rocking_spectrum import rocking_spectrum_runs
+    from fastrock.analyses.rocking_spectrum.engine import rocking_spectrum_runs
     return rocking_spectrum_runs(None, progress=False, **{k: list(v) for k, v in _RS.items()})
 
 
 def _rocking_table():
-    from fastrock.rocking_spectrum import rocking_spectrum
+    from fastrock.analyses.rocking_spectrum.definitions import rocking_spectrum
     return rocking_spectrum(None, progress=False, **{k: list(v) for k, v in _RS.items()})
 
 

@@ -1,0 +1,267 @@
+"""Overturning spectra under pulses (grid of amplitude x frequency x sign)."""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from fastrock import _validate as V
+from fastrock.model import excitation as X
+from fastrock.running import registry
+from fastrock.running.outcomes import outcome_of, status_of, warn_unstable
+from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
+from fastrock.running.sweep import run_sweep
+from fastrock.kernels import layout as L
+
+SPECTRUM_COLUMNS = """\
+amplitude_ratio     a_p / (g tan alpha)                      [-]
+frequency_ratio     omega_p / p                              [-]
+sign                pulse sign (+1: ground first accelerates toward +x)
+amplitude           a_p                                      [m/s^2]
+amplitude_g         a_p / g                                  [-]
+frequency_hz        f_p = omega_p / (2 pi)                   [Hz]
+outcome             safe | mode1 | mode2 | leaning | flight | failed
+status              refined status (e.g. safe:rest, safe:bounded)
+max_rotation_ratio  max |theta| / alpha                      [-]
+max_rotation        max |theta|                              [rad]
+impacts             ground impacts (up to the decision when early_exit)
+ground_impacts      same as impacts
+wall_impacts        wall impacts (0 without a wall)
+max_rotation_toward_wall, max_rotation_away_from_wall  [rad] (with a wall)
+toward_wall         True if the pulse first throws the block toward the wall
+time_uplift         first uplift                             [s]
+time_overturn       overturning time (NaN if safe)           [s]
+time_end            time at which the run stopped            [s]
+theta_end, theta_dot_end  state when the run stopped          [rad, rad/s]
+nfev                right-hand-side evaluations
+max_slide, residual_slide  max |d| and final d (with friction)  [m]
+time_sliding, time_slide_rocking, stick_slip  (with friction)
+time_rocking, time_contact  time lifted off / in full contact (flexible body, foundation)  [s]
+flights, time_flight, max_jump  free flights, time in flight [s] and the largest rise of the
+                    centre of mass above its rest height [m] (contact model: wall and
+                    friction, or Friction(lift_off="flight"))
+max_deformation     max |u|, the column's deflection (flexible body)  [m]
+max_deformation_ratio  max |u| / the deflection at uplift (flexible body)  [-]
+energy_gains        impacts that raised the kinetic energy (flexible body; pivot-switch map)
+lift_offs, time_unloaded  held lift-offs and their time (flexible body with friction)  [-, s]
+boundary            outcome changes when the tolerance is halved (boundary_check=True)
+"""
+
+
+#: Largest grid of one call (runs): its arrays take about 1 kB per run.
+MAX_GRID_RUNS = 10_000_000
+
+
+def _grid(values, name):
+    if isinstance(values, (str, bytes)):
+        raise ValueError(f"{name} must be an array of numbers, got the string {values!r}")
+    a = np.atleast_1d(V.finite_array(name, np.atleast_1d(values)))
+    if a.size == 0:
+        raise ValueError(f"{name} is empty")
+    if (a < 0).any():
+        raise ValueError(f"{name} must be >= 0")
+    for v in a:
+        V.finite(name, v)   # magnitude and denormal checks
+    return a
+
+
+def _signs(sign):
+    if isinstance(sign, str):
+        if sign != "both":
+            raise ValueError(f"sign must be +1, -1, 'both' or a list, got {sign!r}")
+        return [1, -1]
+    if np.ndim(sign) == 0:
+        return [V.sign("sign", sign)]
+    out = [V.sign("sign", s) for s in sign]
+    if not out:
+        raise ValueError("sign is empty; give +1, -1, 'both' or a list of them")
+    return out
+
+
+def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, pulse="one-sine",
+                         wall=None, friction=None, foundation=None, mass=1.0, vertical=None, solver=None,
+                         rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
+                         early_exit=True, chunk_size=None, progress=True, boundary_check=False,
+                         amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p", kind=None):
+    """Overturning spectrum of a body under pulses, in parallel.
+
+    Parameters
+    ----------
+    body : RigidBlock
+    amplitude_ratios : array
+        a_p / (g tan alpha) values, or amplitudes in ``amplitude_unit``.
+    frequency_ratios : array
+        omega_p / p values (> 0), or frequencies in ``frequency_unit``.
+    sign : +1, -1, "both" or list
+        Pulse sign(s); a_g = sign * a_p * sin(omega_p t).
+    pulse : str
+        "one-sine" (default), "half-sine", "one-cosine"; ``kind`` is the same option under
+        the name :class:`Pulse` gives it (give one of them).
+    amplitude_unit, frequency_unit : str
+        Units of the two axes, as in :class:`Pulse`: "g_tan_alpha" (default), "g" or
+        "m/s2"; "omega_p/p" (default), "Hz" or "rad/s".  The table always holds both the
+        ratios and the physical values (amplitude_g, frequency_hz).
+    wall : Wall, optional
+    friction : Friction, optional
+        Adds the outcome "slide" and the columns max_slide, residual_slide [m].
+    foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration, optional
+        The block stands on a flexible foundation instead of rigid ground
+        (``body`` a RigidBlock with b and h); every run starts at rest in
+        static equilibrium on it.  Adds the columns time_rocking and
+        time_contact [s].
+    mass : float
+        Block mass [kg] with ``foundation`` (the foundation's stiffnesses
+        are absolute).
+    vertical : Pulse, SampledMotion or GroundMotion, optional
+        Vertical ground acceleration, the same in every run (effective
+        gravity G = g + a_v); each run lasts until both excitations end,
+        plus ``t_after``.
+    early_exit : bool
+        Stop a run once its outcome is decided (exact; see README).
+    progress : bool
+        Progress bar on stderr for long sweeps.  Ctrl-C returns the finished
+        rows (``df.attrs["interrupted"]`` is True).
+    boundary_check : bool
+        Run the grid a second time with the tolerance (or the fixed step)
+        halved and add the column ``boundary``: True where the outcome
+        changes, i.e. the cell sits on an outcome boundary closer than the
+        integration error can resolve (about twice the cost).
+
+    Returns
+    -------
+    DataFrame, one row per run; columns in ``SPECTRUM_COLUMNS``.
+    """
+    solver = make_solver(solver, rtol, atol, dt)
+    if kind is not None:
+        if pulse != "one-sine" and pulse != kind:
+            raise ValueError(f"give the pulse shape once: kind={kind!r} and pulse={pulse!r}")
+        pulse = kind
+    V.choice("pulse", pulse, ("one-sine", "half-sine", "one-cosine"))
+    V.choice("amplitude_unit", amplitude_unit, X.AMPLITUDE_UNITS)
+    V.choice("frequency_unit", frequency_unit, X.FREQUENCY_UNITS)
+    early_exit = V.boolean("early_exit", early_exit)
+    boundary_check = V.boolean("boundary_check", boundary_check)
+    if chunk_size is not None:
+        chunk_size = V.integer("chunk_size", chunk_size, 1)
+    amps = _grid(amplitude_ratios, "amplitude_ratios")
+    freqs = _grid(frequency_ratios, "frequency_ratios")
+    if (freqs <= 0).any():
+        raise ValueError("frequency_ratios must be > 0")
+    amps, freqs = _to_ratios(body, amps, freqs, amplitude_unit, frequency_unit)
+    spec = registry.select(body, wall, friction, foundation, V.positive("mass", mass))
+    vertical = X.as_excitation(vertical, "vertical")
+    signs = _signs(sign)
+    t_after = V.run_time("t_after", V.non_negative("t_after", t_after))
+    n = len(signs) * freqs.size * amps.size
+    if n > MAX_GRID_RUNS:
+        raise ValueError(f"amplitude_ratios x frequency_ratios x sign: {amps.size} x {freqs.size} x "
+                         f"{len(signs)} = {n:,} runs, more than {MAX_GRID_RUNS:,} in one call; split the grid")
+    V.acceleration("amplitude_ratios", amps.max() * body.g * np.tan(body.alpha), body.g,
+                   "the largest pulse amplitude a_p = amplitude_ratio g tan(alpha)")
+    t_longest = V.run_time("frequency_ratios", (np.pi if pulse == "half-sine" else 2 * np.pi) /
+                           (freqs.min() * body.p), "the longest pulse")
+    S, F, A = np.meshgrid(np.array(signs, float), freqs, amps, indexing="ij")
+    S, F, A = S.ravel(), F.ravel(), A.ravel()
+    kind = X.PULSE_KINDS[pulse]
+    omega = F * body.p
+    amp = A * body.g * np.tan(body.alpha)
+    dur = (np.pi if pulse == "half-sine" else 2 * np.pi) / omega
+    HDR = np.zeros((n, L.N_EXC))
+    HDR[:, L.X_KIND] = kind
+    HDR[:, L.X_AMP] = amp
+    HDR[:, L.X_OMEGA] = omega
+    HDR[:, L.X_SIGN] = S
+    HDR[:, L.X_DUR] = dur
+    smp = np.zeros(1)
+    t_vertical = 0.0
+    if vertical is not None:
+        vhdr, smp = X.to_header(body, None, vertical)
+        HDR[:, L.V_CHANNEL:] = vhdr[L.V_CHANNEL:]
+        t_vertical = X.end_time(body, None, vertical)
+    solver.check_fixed_steps(V.run_time("t_after", max(t_longest, t_vertical) + t_after,
+                                        "the longest run (pulse plus t_after)"), "the longest run")
+    opt = solver.options(0.0, early_exit)
+    OPT = np.tile(opt, (n, 1))
+    OPT[:, L.O_T_END] = np.maximum(dur, t_vertical) + t_after
+    PAR = np.tile(spec.par, (n, 1))
+    if foundation is not None:
+        from fastrock.model.foundation import block_inertia
+        Y0 = np.tile(foundation.initial_state(block_inertia(body, mass), 0.0, 0.0), (n, 1))
+    else:
+        Y0 = np.zeros((n, spec.n_state))
+    status, MET, YF, done = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, chunk_size, progress,
+                                      label="runs", model=spec.name)
+    df = pd.DataFrame({
+        "amplitude_ratio": A, "frequency_ratio": F, "sign": S.astype(int),
+        "amplitude": amp, "amplitude_g": amp / body.g, "frequency_hz": omega / (2 * np.pi),
+    })
+    df = _add_results(df, status, MET, body, wall, friction if spec.friction else None)
+    if spec.model.flight or spec.name == "contact":
+        from fastrock.running.result import flight_metrics
+        for k, v in flight_metrics(MET).items():
+            df[k] = v
+    if foundation is not None:
+        df["time_rocking"] = MET[:, L.M_T_ROCK]
+        df["time_contact"] = MET[:, L.M_T_CONTACT]
+    df["theta_end"] = YF[:, spec.theta_index]
+    df["theta_dot_end"] = YF[:, spec.theta_index + 1]
+    df = df.iloc[:done].reset_index(drop=True)
+    if solver.dt:
+        warn_unstable(status[:done], MET[:done], solver.dt)
+    df.attrs.update(interrupted=done < n, kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e,
+                    pulse=pulse, solver=solver.name, amplitude_unit=amplitude_unit,
+                    frequency_unit=frequency_unit)
+    if boundary_check:
+        import dataclasses
+        half = (dataclasses.replace(solver, dt=solver.dt / 2) if solver.dt else
+                dataclasses.replace(solver, rtol=solver.rtol / 2,
+                                    atol=(solver.atol if solver.atol is not None else solver.rtol * 1e-2) / 2))
+        df2 = overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign, pulse=pulse,
+                                   amplitude_unit=amplitude_unit, frequency_unit=frequency_unit, wall=wall,
+                                   friction=friction, foundation=foundation, mass=mass, vertical=vertical,
+                                   solver=half, t_after=t_after, early_exit=early_exit,
+                                   chunk_size=chunk_size, progress=progress)
+        m = min(len(df), len(df2))
+        df = df.iloc[:m].copy()
+        df["boundary"] = df["outcome"].to_numpy() != df2["outcome"].to_numpy()[:m]
+        df.attrs["interrupted"] = df.attrs["interrupted"] or df2.attrs["interrupted"]
+    return df
+
+
+def _to_ratios(body, amps, freqs, amplitude_unit, frequency_unit):
+    """Axes in the literature's ratios a_p/(g tan alpha) and omega_p/p from the given units."""
+    uplift = body.g * np.tan(body.alpha)
+    amps = {"g_tan_alpha": amps, "g": amps * X.G_STANDARD / uplift, "m/s2": amps / uplift}[amplitude_unit]
+    freqs = {"omega_p/p": freqs, "Hz": 2 * np.pi * freqs / body.p, "rad/s": freqs / body.p}[frequency_unit]
+    return amps, freqs
+
+
+def _add_results(df, status, MET, body, wall=None, friction=None):
+    df["outcome"] = [outcome_of(c) for c in status]
+    if friction is not None:
+        from fastrock.running.result import friction_metrics
+        for k, v in friction_metrics(MET, getattr(body, "kind", "") == "flexible").items():
+            df[k] = v
+        slid = (df["outcome"] == "safe") & (df["residual_slide"].abs() > friction.slide_tolerance)
+        df.loc[slid, "outcome"] = "slide"
+    df["status"] = [status_of(c) for c in status]
+    df["max_rotation_ratio"] = MET[:, L.M_MAX_ABS_THETA] / body.alpha
+    df["max_rotation"] = MET[:, L.M_MAX_ABS_THETA]
+    df["impacts"] = np.nan_to_num(MET[:, L.M_IMPACTS]).astype(int)
+    df["ground_impacts"] = df["impacts"]
+    df["wall_impacts"] = np.nan_to_num(MET[:, L.M_WALL_IMPACTS]).astype(int)
+    if wall is not None:
+        # a positive ground acceleration tips the block toward -theta
+        df["toward_wall"] = df["sign"] == -wall.side
+        toward = L.M_MAX_THETA_POS if wall.side > 0 else L.M_MAX_THETA_NEG
+        away = L.M_MAX_THETA_NEG if wall.side > 0 else L.M_MAX_THETA_POS
+        df["max_rotation_toward_wall"] = MET[:, toward]
+        df["max_rotation_away_from_wall"] = MET[:, away]
+    if getattr(body, "kind", "") == "flexible":
+        from fastrock.running.result import flexible_metrics
+        for k, v in flexible_metrics(MET, body).items():
+            df[k] = v
+    df["time_uplift"] = MET[:, L.M_T_UPLIFT]
+    df["time_overturn"] = MET[:, L.M_T_OVER]
+    df["time_end"] = MET[:, L.M_T_FINAL]
+    df["nfev"] = np.nan_to_num(MET[:, L.M_NFEV]).astype(np.int64)
+    return df

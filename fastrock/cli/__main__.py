@@ -1,0 +1,5 @@
+import sys
+
+from fastrock.cli.app import main
+
+sys.exit(main())

@@ -1,0 +1,1 @@
+"""Records and files: the accelerogram readers, GroundMotion and the shipped record."""

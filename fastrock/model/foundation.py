@@ -1,0 +1,285 @@
+"""Rocking against vibration: a rigid block on a flexible foundation (physics.md §5).
+
+Three foundation models, each a scene effect passed to :func:`simulate_foundation`:
+
+* :class:`TwoSpringFoundation` ``(k_v, c_v)`` -- tensionless vertical spring-dashpots at the two
+  bottom corners (physics.md §5.1, the reference model). Lift-off and re-contact happen
+  smoothly (soft contact, no impact map); dissipation comes from ``c_v`` only.
+* :class:`SwitchingFoundation` ``(k_t, c_t, e_f)`` -- the switching SDOF model used by Yu,
+  Gutschmidt & MacRae (physics.md §5.2, with the P-Delta term kept): linear rotational spring
+  while in contact, Housner rocking once ``|k_t theta + c_t theta'| >= M G b``, back to contact
+  at ``|theta| <= theta_y = M g b / k_t``, optional restitution ``e_f`` at re-contact.
+* :class:`LinearVibration` ``(k_t, c_t)`` -- a linear SDOF ``I_C theta'' + c_t theta' + k_t theta
+  = -M h a_g`` that never lifts off (reference).
+
+A rigid-ground scene is :func:`fastrock.simulate` and never imports this module's kernels.
+
+The body is a :class:`fastrock.RigidBlock` with known half-width ``b`` and centre-of-mass
+height ``h`` (:meth:`RigidBlock.rectangle` or :meth:`RigidBlock.from_inertia`) plus its mass
+``M`` [kg] (default 1 kg; absolute stiffnesses scale with it). The inertia follows from the
+block's ``p``: ``I_0 = M g R / p^2`` about a corner, ``I_G = I_0 - M R^2``,
+``I_C = I_G + M h^2`` about the base centre.
+
+Small-amplitude vibration in full contact (both models, P-Delta kept):
+``I_C theta'' + c_t theta' + (k_t - M g h) theta = 0`` with ``k_t = 2 k_v b^2``,
+``c_t = 2 c_v b^2`` for the two-spring foundation, so ``omega^2 = (k_t - M g h)/I_C`` and
+``zeta = c_t / (2 I_C omega)``; the vibration period is ``T_L = 2 pi/omega`` (undamped).
+:meth:`TwoSpringFoundation.from_vibration` and friends build a foundation from ``omega``
+and ``zeta``.
+
+The predictors :func:`two_spring_predictor` and :func:`switching_predictor` (and
+:func:`make_predictor` for a given body) let :func:`fastrock.freerocking.fit_free_rocking`
+fit these models to measured half-cycle durations.
+
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+import numpy as np
+from fastrock import _validate as V
+from fastrock.model.bodies import RigidBlock
+from fastrock.kernels.layout import (N_PAR_FOUNDATION as N_PAR, P_B, P_CT, P_CV, P_EF, P_H, P_I_0,
+    P_I_C, P_I_G, P_KT, P_KV, P_MASS, P_THETA_Y)
+
+
+# ------------------------------------------------------------------------------ body
+@dataclass(frozen=True)
+class BlockInertia:
+    """Mass properties of a block: ``M`` [kg], ``b``, ``h``, ``R`` [m], inertias [kg m^2]."""
+
+    M: float
+    b: float
+    h: float
+    R: float
+    I_0: float
+    I_G: float
+    I_C: float
+    g: float
+
+
+def block_inertia(body, mass=1.0):
+    """Mass properties of ``body`` with mass ``mass`` [kg].
+
+    ``I_0 = M g R / p^2`` (from the block's ``p``), ``I_G = I_0 - M R^2``, ``I_C = I_G + M h^2``.
+
+    Raises
+    ------
+    ValueError
+        If the body is not a :class:`RigidBlock` with known ``b`` and ``h``, or its ``p``
+        implies ``I_0 < M R^2``.
+    """
+    if not isinstance(body, RigidBlock):
+        raise ValueError(f"body must be a fastrock.RigidBlock, got {type(body).__name__}")
+    if body.b is None or body.h is None:
+        raise ValueError("body must have known b and h (use RigidBlock.rectangle(b, h) or "
+                         "RigidBlock.from_inertia(R, alpha, I0, m))")
+    M = V.positive("mass", mass)
+    b, h, g = float(body.b), float(body.h), float(body.g)
+    if abs(math.atan2(b, h) - body.alpha) > 1e-9 * max(1.0, body.alpha):
+        raise ValueError(f"body.alpha = {body.alpha} does not match atan(b/h) = "
+                         f"{math.atan2(b, h)}")
+    R = math.hypot(b, h)
+    I0 = M * g * R / body.p ** 2
+    I_G = I0 - M * R * R
+    if I_G < -1e-12 * I0:
+        raise ValueError(f"body.p = {body.p} rad/s implies I_0 = M g R/p^2 < M R^2 "
+                         f"(p must be <= sqrt(g/R) = {math.sqrt(g / R)})")
+    I_G = max(I_G, 0.0)
+    return BlockInertia(M=M, b=b, h=h, R=R, I_0=I0, I_G=I_G, I_C=I_G + M * h * h, g=g)
+
+
+# ------------------------------------------------------------------------ foundations
+def _rotational_from_vibration(body, omega, zeta, mass, p_delta):
+    blk = block_inertia(body, mass)
+    omega = V.positive("omega", omega)
+    zeta = V.non_negative("zeta", zeta)
+    k_t = omega ** 2 * blk.I_C + (blk.M * blk.g * blk.h if p_delta else 0.0)
+    c_t = 2.0 * zeta * omega * blk.I_C
+    return blk, k_t, c_t
+
+
+def _vibration_of(blk, k_t, c_t, p_delta):
+    k_eff = k_t - (blk.M * blk.g * blk.h if p_delta else 0.0)
+    if k_eff <= 0.0:
+        return float("nan"), float("nan")
+    omega = math.sqrt(k_eff / blk.I_C)
+    return omega, c_t / (2.0 * blk.I_C * omega)
+
+
+@dataclass(frozen=True)
+class TwoSpringFoundation:
+    """Tensionless spring-dashpots at the two bottom corners (physics.md §5.1).
+
+    Parameters
+    ----------
+    k_v : float
+        Stiffness of each corner spring [N/m], > 0.
+    c_v : float
+        Viscous coefficient of each corner dashpot [N s/m], >= 0.
+    """
+
+    k_v: float
+    c_v: float = 0.0
+    model = "two-spring"
+    kernel = "two_spring"
+
+    def __post_init__(self):
+        V.positive("k_v", self.k_v)
+        V.non_negative("c_v", self.c_v)
+
+    @classmethod
+    def from_vibration(cls, body, omega, zeta=0.0, mass=1.0):
+        """Corner springs giving rocking vibration ``omega`` [rad/s] with damping ratio ``zeta``.
+
+        ``k_v = (omega^2 I_C + M g h) / (2 b^2)``, ``c_v = 2 zeta omega I_C / (2 b^2)``.
+        """
+        blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, True)
+        return cls(k_v=k_t / (2 * blk.b ** 2), c_v=c_t / (2 * blk.b ** 2))
+
+    def rotational(self, body, mass=1.0):
+        """Small-rotation rotational stiffness and damping ``(k_t, c_t) = 2 b^2 (k_v, c_v)``."""
+        b = block_inertia(body, mass).b
+        return 2 * self.k_v * b * b, 2 * self.c_v * b * b
+
+    def vibration(self, body, mass=1.0):
+        """``(omega [rad/s], zeta)`` of small rocking vibration in full contact (P-Delta kept);
+        NaN if ``k_t <= M g h`` (unstable on the foundation)."""
+        k_t, c_t = self.rotational(body, mass)
+        return _vibration_of(block_inertia(body, mass), k_t, c_t, True)
+
+    def uplift_rotation(self, body, mass=1.0):
+        """Static lift-off rotation ``theta_y = M g / (2 k_v b)`` [rad] (small angles)."""
+        blk = block_inertia(body, mass)
+        return blk.M * blk.g / (2 * self.k_v * blk.b)
+
+    def fill_par(self, par, blk):
+        par[P_KV] = self.k_v
+        par[P_CV] = self.c_v
+        k_t = 2 * self.k_v * blk.b ** 2
+        par[P_KT] = k_t
+        par[P_CT] = 2 * self.c_v * blk.b ** 2
+        par[P_THETA_Y] = blk.M * blk.g * blk.b / k_t
+
+    def initial_state(self, blk, theta0, dtheta0):
+        """(y_c, y_c', q, q') of a release from rest in vertical equilibrium: both corners
+        share the weight if they both touch, else the lower corner carries it alone."""
+        d_s = blk.M * blk.g / (2 * self.k_v)
+        lift = blk.b * math.sin(abs(theta0))
+        yc = -d_s if lift <= d_s else lift - 2 * d_s
+        return np.array([yc, 0.0, theta0, dtheta0], float)
+
+
+@dataclass(frozen=True)
+class SwitchingFoundation:
+    """Switching SDOF foundation (physics.md §5.2, Yu et al.'s model with P-Delta kept).
+
+    Parameters
+    ----------
+    k_t : float
+        Rotational stiffness in the contact phase [N m/rad], > 0.
+    c_t : float
+        Rotational damping in the contact phase [N m s/rad], >= 0.
+    e_f : float
+        Angular-velocity restitution applied at re-contact, in [0, 1] (default 1: none).
+    """
+
+    k_t: float
+    c_t: float = 0.0
+    e_f: float = 1.0
+    model = "switching"
+    kernel = "switching"
+
+    def __post_init__(self):
+        V.positive("k_t", self.k_t)
+        V.non_negative("c_t", self.c_t)
+        V.in_closed("e_f", self.e_f, 0.0, 1.0)
+
+    @classmethod
+    def from_vibration(cls, body, omega, zeta=0.0, e_f=1.0, mass=1.0):
+        """Contact phase with vibration ``omega`` [rad/s] and damping ratio ``zeta``:
+        ``k_t = omega^2 I_C + M g h``, ``c_t = 2 zeta omega I_C``."""
+        _blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, True)
+        return cls(k_t=k_t, c_t=c_t, e_f=e_f)
+
+    def vibration(self, body, mass=1.0):
+        """``(omega [rad/s], zeta)`` of the contact phase (P-Delta kept)."""
+        return _vibration_of(block_inertia(body, mass), self.k_t, self.c_t, True)
+
+    def uplift_rotation(self, body, mass=1.0):
+        """``theta_y = M g b / k_t`` [rad]."""
+        blk = block_inertia(body, mass)
+        return blk.M * blk.g * blk.b / self.k_t
+
+    def fill_par(self, par, blk):
+        par[P_KT] = self.k_t
+        par[P_CT] = self.c_t
+        par[P_EF] = self.e_f
+        par[P_THETA_Y] = blk.M * blk.g * blk.b / self.k_t
+
+    def initial_state(self, blk, theta0, dtheta0):
+        return np.array([theta0, dtheta0], float)
+
+
+@dataclass(frozen=True)
+class LinearVibration:
+    """Linear rotational SDOF ``I_C theta'' + c_t theta' + k_t theta = -M h a_g`` (reference).
+
+    Parameters
+    ----------
+    k_t : float
+        Rotational stiffness [N m/rad], > 0.
+    c_t : float
+        Rotational damping [N m s/rad], >= 0.
+    """
+
+    k_t: float
+    c_t: float = 0.0
+    model = "linear"
+    kernel = "linear_sdof"
+
+    def __post_init__(self):
+        V.positive("k_t", self.k_t)
+        V.non_negative("c_t", self.c_t)
+
+    @classmethod
+    def from_vibration(cls, body, omega, zeta=0.0, mass=1.0):
+        """``k_t = omega^2 I_C``, ``c_t = 2 zeta omega I_C``."""
+        _blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, False)
+        return cls(k_t=k_t, c_t=c_t)
+
+    def vibration(self, body, mass=1.0):
+        return _vibration_of(block_inertia(body, mass), self.k_t, self.c_t, False)
+
+    def fill_par(self, par, blk):
+        par[P_KT] = self.k_t
+        par[P_CT] = self.c_t
+        par[P_THETA_Y] = np.inf
+
+    def initial_state(self, blk, theta0, dtheta0):
+        return np.array([theta0, dtheta0], float)
+
+
+FOUNDATIONS = (TwoSpringFoundation, SwitchingFoundation, LinearVibration)
+
+
+def foundation_par(body, foundation, mass=1.0):
+    """Parameter vector of a block on a foundation (registry ``build_par``)."""
+    blk = block_inertia(body, mass)
+    par = np.zeros(N_PAR)
+    par[0] = body.alpha          # rigid layout: alpha, p, e, g, theta_over
+    par[1] = body.p
+    par[2] = body.e
+    par[3] = body.g
+    par[4] = body.theta_over
+    par[P_MASS] = blk.M
+    par[P_I_G] = blk.I_G
+    par[P_B] = blk.b
+    par[P_H] = blk.h
+    par[P_I_C] = blk.I_C
+    par[P_I_0] = blk.I_0
+    par[P_EF] = 1.0
+    foundation.fill_par(par, blk)
+    return par
+
+

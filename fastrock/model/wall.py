@@ -1,0 +1,159 @@
+"""A rigid rear wall beside the block: one-sided rocking (physics.md section 2).
+
+References: Hogan (1992), *Proc. R. Soc. A* 439, 35-45 (d = 0);
+Mennitti, Maiorano & Aversa (2021), one-sided rocking of rigid blocks next to
+a wall (tall elastic wall, gaps of 1 and 10 cm).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from fastrock import _validate as V
+
+
+@dataclass(frozen=True)
+class Wall:
+    """A rigid vertical wall parallel to one face of a rectangular block.
+
+    Parameters
+    ----------
+    gap : float
+        Clear gap d [m] between the block's face and the wall at rest, >= 0.
+        ``gap=0`` is Hogan's one-sided rocking (the block rests against the
+        wall and only rocks away from it).
+    side : {-1, +1}
+        Side of the wall.  ``-1`` (default) puts it on the negative-theta
+        side: a positive ground acceleration (which tips the block toward
+        -theta, physics.md 0) throws the block toward the wall.
+    height : float, optional
+        Wall height h_w [m], > 0.  None (default): taller than the block.
+    restitution : float
+        Wall restitution e_w in [0, 1]: a wall impact keeps the pivot and sets
+        theta'+ = -e_w theta'-.  Default 1 (elastic, as Mennitti et al.).  With
+        ``gap=0`` it is Hogan's r in theta'+ = -r theta'- (ground and wall
+        impacts coincide, the pivot stays on the far corner).  Note that the
+        small-gap limit of the d > 0 model is Hogan's map with r = e^2 e_w
+        (a ground impact, a wall impact and a second ground impact in quick
+        succession): pass ``restitution = e**2 * e_w`` at d = 0 for a model
+        continuous in d.
+    friction : float
+        Coulomb coefficient mu_w of the wall contact (static = kinetic),
+        >= 0.  Default 0 (frictionless).  A positive value needs the contact
+        model, i.e. ``friction=Friction(...)`` in the scene (``Friction(inf,
+        lift_off="flight")`` for a pivot that never slips); the wall model
+        (no ``friction=``) and the flexible body's keep a frictionless wall
+        and refuse it.  In the contact model the wall friction acts while
+        the block rests or slides on the wall (a block leaning on the wall,
+        or wedged between ground and wall, holds while some wall force
+        within the cone makes every contact force admissible; sliding along
+        the wall costs mu_w N_w) and in wall impacts (Coulomb's cone for
+        the wall impulse; restitution e_w: Poisson's rule in flight, plastic
+        where it would add energy).  The face impact (flat into the wall)
+        is not changed by it.
+
+    Notes
+    -----
+    Outcomes: besides "safe", "mode1" and "mode2" (overturning away from the
+    wall, or toward it when the wall is out of reach), "leaning": the block
+    came to rest on the wall past its own instability (theta_w > alpha), or,
+    after the excitation, is trapped there (past alpha toward the wall with
+    too little energy to come back; with e_w = 1 it then bounces on the wall
+    for ever).  Leaning is never decided early while the ground still shakes
+    (a run cut short by ``duration`` reports the state at its end).
+
+    The limit angle theta_w needs the block's half-height h, so the body must
+    be built with :meth:`RigidBlock.rectangle` or
+    :meth:`RigidBlock.from_inertia` (whose outline is taken as a rectangle of
+    half-dimensions R sin(alpha), R cos(alpha)).  Ground impacts keep the
+    body's Housner restitution e.
+    """
+
+    gap: float
+    side: int = -1
+    height: float | None = None
+    restitution: float = 1.0
+    # a field added after studies were hashed: left out of a study's hash at its default
+    friction: float = field(default=0.0, metadata={"hash_default": True})
+
+    def __post_init__(self):
+        object.__setattr__(self, "gap", V.non_negative("gap", self.gap))
+        if isinstance(self.side, bool):
+            raise ValueError(f"side must be +1 or -1, got {self.side!r}")
+        object.__setattr__(self, "side", V.sign("side", self.side))
+        if self.height is not None:
+            object.__setattr__(self, "height", V.positive("height", self.height))
+        object.__setattr__(self, "restitution",
+                           V.in_closed("restitution", self.restitution, 0.0, 1.0))
+        object.__setattr__(self, "friction", V.non_negative("friction", self.friction))
+
+    @property
+    def toward_sign(self):
+        """Pulse sign whose first half-cycle throws the block toward the wall."""
+        return -self.side
+
+    @staticmethod
+    def _half_height(body):
+        if getattr(body, "kind", "") == "flexible":
+            return float(body.H)    # the outline: the 2B x 2H box turning with the base
+        h = getattr(body, "h", None)
+        if h is None:
+            raise ValueError("a wall needs the block's half-height h to find the contact angle: build "
+                             "the body with RigidBlock.rectangle(b, h) or RigidBlock.from_inertia(...)")
+        return float(h)
+
+    def contact(self, body):
+        """Which geometry branch sets the limit angle: "hogan" (d = 0),
+        "tall" (top rear corner touches the wall), "short" (the rear face
+        touches the wall's top edge) or "none" (d >= 2h: never reached)."""
+        h = self._half_height(body)
+        d = self.gap
+        if d == 0.0:
+            return "hogan"
+        if self.height is not None and d * d + self.height ** 2 < 4.0 * h * h:
+            return "short"
+        if d >= 2.0 * h:
+            return "none"
+        return "tall"
+
+    def limit_angle(self, body):
+        """Rotation theta_w [rad] toward the wall at which the block touches it.
+
+        Tilting toward the wall about the near bottom corner, the rear face
+        rotates about its bottom point.  Tall wall (h_w >= 2h cos theta_w):
+        the top rear corner touches it, sin(theta_w) = d / (2h).  Short wall
+        (h_w < 2h cos theta_w, i.e. d^2 + h_w^2 < 4h^2): the rear face touches
+        the wall's top edge, tan(theta_w) = d / h_w.  Exactly one branch is
+        admissible (they meet at d^2 + h_w^2 = 4h^2).  If d >= 2h the block
+        cannot reach the wall before lying flat: ``math.inf`` is returned and
+        the run is the two-sided one.
+        """
+        kind = self.contact(body)
+        d = self.gap
+        if kind == "hogan":
+            return 0.0
+        if kind == "short":
+            return math.atan2(d, self.height)
+        if kind == "none":
+            return math.inf
+        return math.asin(d / (2.0 * self._half_height(body)))
+
+    def fill_par(self, par, body):
+        """Write the wall entries of the rigid kernel's parameter vector."""
+        from fastrock.kernels import layout as K
+        if self.friction != 0.0:
+            raise ValueError("wall: friction > 0 at the wall contact needs the contact model: add "
+                             "friction=Friction(mu) (or Friction(inf, lift_off='flight') for a pivot "
+                             "that never slips); the wall model's wall is frictionless")
+        par[K.P_WALL_SIDE] = float(self.side)
+        par[K.P_THETA_W] = self.limit_angle(body)
+        par[K.P_E_W] = self.restitution
+        par[K.P_HOGAN] = 1.0 if self.gap == 0.0 else 0.0
+        return par
+
+    def check_initial(self, theta0, body):
+        """Reject an initial rotation that penetrates the wall."""
+        tw = self.limit_angle(body)
+        if self.side * theta0 > tw:
+            raise ValueError(f"theta0 = {theta0!r} penetrates the wall: with the wall on side {self.side:+d} "
+                             f"the block must satisfy side*theta0 <= theta_w = {tw:.6g} rad")

@@ -1,0 +1,152 @@
+"""Runs of a rigid block on a flexible foundation (simulate_foundation).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+from fastrock import _validate as V
+from fastrock.model import excitation as X
+from fastrock.model.bodies import RigidBlock
+from fastrock.running.outcomes import outcome_of, status_of
+from fastrock.running.result import SimulationResult, ground_at, events_frame, metrics_dict, run_inputs
+from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
+from fastrock.running.sweep import call_kernel
+from fastrock.kernels import layout as L
+from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
+from fastrock.model.foundation import block_inertia
+
+
+#: Contact names of the history's ``contact`` column, by kernel mode.
+CONTACT_NAMES = {L.MODE_REST: "contact", L.MODE_ROCK: "rock", L.MODE_FLIGHT: "flight"}
+
+D_RIGHT = 6
+
+D_LEFT = 7
+
+
+def foundation_spec(body, foundation, mass=1.0):
+    """KernelSpec (registry entry, parameter vector) and the block's mass properties."""
+    from fastrock.running.registry import select
+    if not isinstance(body, RigidBlock):
+        raise ValueError(f"foundation models carry a RigidBlock, got {type(body).__name__}")
+    spec = select(body, foundation=foundation, mass=mass)
+    return spec, block_inertia(body, mass)
+
+
+# ------------------------------------------------------------------------- simulation
+def integrate_foundation(spec, y0, hdr, smp, opt, te, cap):
+    """Run the kernel, growing the history buffer until it fits."""
+    while True:
+        y = y0.copy()
+        met = np.zeros(L.N_MET)
+        hist_t = np.empty(cap)
+        hist_y = np.empty((cap, spec.n_state))
+        hist_d = np.empty((cap, L.N_DISC), np.int64)
+        log = np.empty((max(1000, cap // 4), L.N_LOG))
+        cnt = np.zeros(N_COUNTERS, np.int64)
+        code = int(call_kernel(spec.simulate, y, spec.par, hdr, smp, opt, te, met, hist_t, hist_y,
+                               hist_d, log, cnt, opt=opt))
+        if code == L.FAIL_OUTPUT_FULL and cap < 50_000_000:
+            cap *= 4
+            continue
+        nh = int(cnt[C_NHIST])
+        nl = int(cnt[C_NLOG])
+        return code, hist_t[:nh], hist_y[:nh], hist_d[:nh], log[:nl], met, cnt
+
+
+def _check_release(body, theta0, allow_overturn):
+    if abs(theta0) >= body.theta_over:
+        raise ValueError(f"theta0 must satisfy |theta0| < theta_over = {body.theta_over}, "
+                         f"got {theta0}")
+    if abs(theta0) >= body.alpha and not allow_overturn:
+        raise ValueError(f"theta0 = {theta0} rad is at or beyond alpha = {body.alpha} rad: a "
+                         f"release there overturns; pass allow_overturn=True to simulate it")
+
+
+def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical=None,
+                        theta0=0.0, dtheta0=0.0, duration=None, t_after=DEFAULT_T_AFTER,
+                        t_eval=None, solver=None, rtol=None, atol=None, dt=None,
+                        max_steps=None, allow_overturn=False, history_capacity=None):
+    """Simulate a rigid block on a flexible foundation (or its free rocking).
+
+    Parameters
+    ----------
+    body : RigidBlock
+        Block with known ``b`` and ``h`` (``RigidBlock.rectangle`` / ``from_inertia``).
+    foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration
+    excitation, vertical : Pulse, SampledMotion or GroundMotion, optional
+        Horizontal and vertical ground acceleration (None: free motion).
+    mass : float
+        Block mass ``M`` [kg] (default 1).
+    theta0, dtheta0 : float
+        Initial rotation [rad] and angular velocity [rad/s]. The two-spring block starts
+        in vertical equilibrium on the corner(s) that touch (see
+        :meth:`TwoSpringFoundation.initial_state`).
+    allow_overturn : bool
+        Allow ``|theta0| >= alpha`` (a release that overturns); otherwise ValueError.
+    duration, t_after, t_eval, solver, rtol, atol, dt, max_steps :
+        As in :func:`fastrock.simulate`.
+
+    Returns
+    -------
+    SimulationResult
+        ``history`` columns: ``t`` [s], ``a_g``, ``a_v`` [m/s^2], ``theta`` [rad],
+        ``theta_dot`` [rad/s], ``theta_ratio`` (theta/alpha), ``contact`` ("contact": full
+        contact, "rock": on one corner, "flight"), ``pivot`` (+1/-1 corner carrying the
+        block while it rocks, 0 in full contact), ``lift_off`` (bool, contact != "contact");
+        two-spring only: ``y`` [m] (vertical displacement of the base centre), ``y_dot``
+        [m/s], ``force_right``, ``force_left`` [N] (corner forces). At every event the history
+        holds two rows with the same ``t`` (before and after the transition); zero crossings
+        of ``theta`` are events, so the history holds them exactly.
+        ``metrics`` as for :func:`fastrock.simulate`, with ``impacts`` = re-contacts after a
+        lift-off (two-spring: a corner landing from above; switching: return to the contact
+        phase), ``time_uplift`` = first lift-off, plus ``time_rock`` / ``time_contact`` [s].
+        ``status``: "safe:no-uplift" (never lifted off), "safe:rest" (lifted off and ended in
+        full contact, vibrating or at rest on the foundation), "safe:moving" (ended lifted
+        off), "overturn:mode1/mode2" (overturned after / without a re-contact), "flight"
+        (switching model, G <= 0 while rocking).
+    """
+    kw = {} if max_steps is None else {"max_steps": max_steps}
+    solver = make_solver(solver, rtol, atol, dt, **kw)
+    excitation = X.as_excitation(excitation)
+    vertical = X.as_excitation(vertical, "vertical")
+    theta0 = V.finite("theta0", theta0)
+    dtheta0 = V.finite("dtheta0", dtheta0)
+    spec, blk = foundation_spec(body, foundation, mass)
+    _check_release(body, theta0, V.boolean("allow_overturn", allow_overturn))
+    hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
+                                        history_capacity, solver, False)
+    y0 = foundation.initial_state(blk, theta0, dtheta0)
+    code, t, Y, D, lg, met, cnt = integrate_foundation(spec, y0, hdr, smp, opt, te, cap)
+    ag, av = ground_at(t, hdr, smp)
+    it = spec.state_names.index("theta")
+    th = Y[:, it]
+    mode = D[:, L.D_MODE]
+    cols = {
+        "t": t, "a_g": ag, "a_v": av, "theta": th, "theta_dot": Y[:, it + 1],
+        "theta_ratio": th / body.alpha,
+        "contact": [CONTACT_NAMES.get(int(m), str(m)) for m in mode],
+        "pivot": np.where(mode == L.MODE_ROCK, D[:, L.D_PIVOT], 0),
+        "lift_off": mode != L.MODE_REST,
+    }
+    if spec.name == "two_spring":
+        cols["y"] = Y[:, 0]
+        cols["y_dot"] = Y[:, 1]
+        for side, slot, name in ((1.0, D_RIGHT, "force_right"), (-1.0, D_LEFT, "force_left")):
+            d = -(Y[:, 0] - side * blk.b * np.sin(th))
+            dd = -(Y[:, 1] - side * blk.b * np.cos(th) * Y[:, 3])
+            cols[name] = np.where(D[:, slot] != 0, foundation.k_v * d + foundation.c_v * dd,
+                                  0.0)
+    history = pd.DataFrame(cols)
+    events = events_frame(lg, cnt)
+    metrics = metrics_dict(met, body)
+    metrics["time_rock"] = float(met[L.M_T_ROCK])
+    metrics["time_contact"] = float(met[L.M_T_CONTACT])
+    effects = (f"foundation:{foundation.model}",) + (("vertical",) if vertical is not None
+                                                     else ())
+    return SimulationResult(history=history, events=events, outcome=outcome_of(code),
+                            status=status_of(code), status_code=code, metrics=metrics,
+                            kernel=spec.name, body=body, excitation=excitation,
+                            effects=effects, vertical=vertical)
+
+

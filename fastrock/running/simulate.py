@@ -1,0 +1,166 @@
+"""Single runs: time history, events and outcome.
+"""
+from __future__ import annotations
+
+import warnings
+import numpy as np
+import pandas as pd
+from fastrock import _validate as V
+from fastrock.model import excitation as X
+from fastrock.running import registry
+from fastrock.running.outcomes import MODE_NAMES, outcome_of, status_of, warn_unstable
+from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
+from fastrock.running.sweep import call_kernel
+from fastrock.kernels import layout as L
+from fastrock.kernels.config import DEBUG
+from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
+from fastrock.running.result import (SimulationResult, ground_at, events_frame, flight_metrics,
+    friction_metrics, metrics_dict, run_inputs)
+
+
+def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, foundation=None, mass=1.0,
+             theta0=0.0, dtheta0=0.0, duration=None, t_after=DEFAULT_T_AFTER, t_eval=None, solver=None,
+             rtol=None, atol=None, dt=None, early_exit=False, max_steps=None, record_breakpoints=None,
+             history_capacity=None, resample_vertical=False):
+    """Simulate one body under a ground excitation (or free rocking).
+
+    Parameters
+    ----------
+    body : RigidBlock
+    excitation : Pulse, SampledMotion or GroundMotion, optional
+        Horizontal ground acceleration.  None: free rocking from
+        (``theta0``, ``dtheta0``).
+    vertical : Pulse, SampledMotion or GroundMotion, optional
+        Vertical ground acceleration a_v (effective gravity G = g + a_v).  A
+        vertical record beside a horizontal record must have the same dt,
+        length and start, unless ``resample_vertical=True`` (linear
+        interpolation onto the horizontal samples).
+    wall : Wall, optional
+        One-sided rocking against a rear wall.
+    friction : Friction, optional
+        Coulomb friction (sliding and slide-rocking); None or mu_s = inf:
+        no sliding degree of freedom at all.
+    foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration, optional
+        A flexible foundation under a RigidBlock (rocking against vibration);
+        the run is :func:`fastrock.foundation.simulate_foundation`'s, whose
+        result documents the extra history columns.
+    mass : float
+        Block mass [kg] with ``foundation``.
+    theta0, dtheta0 : float
+        Initial rotation [rad] and angular velocity [rad/s].
+    duration : float, optional
+        End time [s].  Default: end of the excitation + ``t_after``.
+    t_eval : array, optional
+        Output times [s]; default: every accepted step and every event.
+    solver, rtol, atol, dt :
+        Integrator settings (see :class:`fastrock.Solver`); ``dt`` selects the
+        fixed-step mode.
+    early_exit : bool
+        Stop once the outcome is decided (see README, "Early decisions").
+
+    Returns
+    -------
+    SimulationResult
+    """
+    kw = {}
+    if max_steps is not None:
+        kw["max_steps"] = max_steps
+    if record_breakpoints is not None:
+        kw["record_breakpoints"] = record_breakpoints
+    resample_vertical = V.boolean("resample_vertical", resample_vertical)
+    spec = registry.select(body, wall, friction, foundation, V.positive("mass", mass))
+    vertical = X.match_components(excitation, vertical, resample_vertical)
+    if foundation is not None:
+        from fastrock.running.foundation import simulate_foundation
+        return simulate_foundation(body, foundation, excitation, mass=mass, vertical=vertical, theta0=theta0,
+                                   dtheta0=dtheta0, duration=duration, t_after=t_after, t_eval=t_eval,
+                                   solver=make_solver(solver, rtol, atol, dt, **kw), allow_overturn=True,
+                                   history_capacity=history_capacity)
+    solver = make_solver(solver, rtol, atol, dt, **kw)
+    excitation = X.as_excitation(excitation)
+    vertical = X.as_excitation(vertical, "vertical")
+    theta0 = V.finite("theta0", theta0)
+    dtheta0 = V.finite("dtheta0", dtheta0)
+    if abs(theta0) >= body.theta_over:
+        raise ValueError(f"theta0 must satisfy |theta0| < theta_over = {body.theta_over}, got {theta0}")
+    if wall is not None:
+        wall.check_initial(theta0, body)
+    hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
+                                        history_capacity, solver, early_exit)
+    y0 = np.zeros(spec.n_state)
+    y0[spec.theta_index] = theta0
+    y0[spec.theta_index + 1] = dtheta0
+    while True:
+        y = y0.copy()
+        met = np.zeros(L.N_MET)
+        hist_t = np.empty(cap)
+        hist_y = np.empty((cap, spec.n_state))
+        hist_d = np.empty((cap, 3), np.int64)
+        log = np.empty((max(1000, cap // 4), L.N_LOG))
+        cnt = np.zeros(N_COUNTERS, np.int64)
+        code = int(call_kernel(spec.simulate, y, spec.par, hdr, smp, opt, te, met, hist_t, hist_y, hist_d, log,
+                               cnt, opt=opt))
+        if code == L.FAIL_OUTPUT_FULL and cap < 50_000_000:
+            cap *= 4
+            continue
+        break
+    nh = int(cnt[C_NHIST])
+    t = hist_t[:nh]
+    ag, av = ground_at(t, hdr, smp)
+    ti = spec.theta_index
+    th = hist_y[:nh, ti]
+    history = pd.DataFrame({
+        "t": t, "a_g": ag, "a_v": av, "theta": th, "theta_dot": hist_y[:nh, ti + 1],
+        "theta_ratio": th / body.alpha,
+        "contact": [MODE_NAMES.get(int(m), str(m)) for m in hist_d[:nh, 0]],
+        "pivot": np.where(hist_d[:nh, 0] == L.MODE_REST, 0, hist_d[:nh, 1]),
+    })
+    if spec.flexible:
+        u, du = hist_y[:nh, 0], hist_y[:nh, 1]
+        wn = body.omega_n
+        history["u"] = u
+        history["u_dot"] = du
+        history["u_ratio"] = u / body.uplift_deformation
+        # elastic column force and the moment it makes at the base
+        history["base_shear"] = body.mass * (wn * wn * u + 2 * body.zeta * wn * du)
+        history["overturning_moment"] = history["base_shear"] * body.H
+    if spec.friction:
+        history["d"] = hist_y[:nh, spec.slide_index]
+        history["d_dot"] = hist_y[:nh, spec.slide_index + 1]
+    if "z" in spec.state_names:     # height of the base above the ground (free flight)
+        iz = spec.state_names.index("z")
+        history["z"] = hist_y[:nh, iz]
+        history["z_dot"] = hist_y[:nh, iz + 1]
+    events = events_frame(log[:int(cnt[C_NLOG])], cnt)
+    metrics = metrics_dict(met, body)
+    outcome = outcome_of(code)
+    if spec.friction:
+        metrics.update({k: float(v[0]) for k, v in friction_metrics(met[None, :], spec.flexible).items()})
+        metrics["stick_slip"] = int(metrics["stick_slip"])
+        if "lift_offs" in metrics:
+            metrics["lift_offs"] = int(metrics["lift_offs"])
+        if outcome == "safe" and abs(metrics["residual_slide"]) > friction.slide_tolerance:
+            outcome = "slide"
+    if spec.model.flight or spec.name == "contact":
+        metrics.update({k: v[0].item() for k, v in flight_metrics(met[None, :]).items()})
+    if solver.dt:
+        warn_unstable(code, met, solver.dt)
+    if DEBUG:
+        metrics["energy_gains"] = int(met[L.M_ENERGY_GAINS])
+    if metrics.get("energy_gains", 0) > 0:
+        if getattr(body, "impact", None) == "pivot-switch":
+            warnings.warn(f"the pivot-switch (I1) impact map created energy at {metrics['energy_gains']} "
+                          "impact(s) in this run (see README, flexible bodies)", stacklevel=2)
+        else:
+            warnings.warn(f"{metrics['energy_gains']} impact(s) raised the kinetic energy (FASTROCK_DEBUG "
+                          "check): a defect, please report it with this run", RuntimeWarning, stacklevel=2)
+    return SimulationResult(history=history, events=events, outcome=outcome,
+                            status=status_of(code), status_code=code,
+                            metrics=metrics, kernel=spec.name, body=body,
+                            excitation=excitation, vertical=vertical,
+                            effects=tuple(e for e, on in (("flexible", spec.flexible),
+                                                          ("friction", spec.friction),
+                                                          ("flight", spec.model.flight),
+                                                          ("wall", wall is not None),
+                                                          ("vertical", vertical is not None)) if on))
+

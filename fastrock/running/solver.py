@@ -1,0 +1,104 @@
+"""Solver settings and their translation to the kernels' option vector."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from fastrock import _validate as V
+from fastrock.kernels import layout as L
+
+DEFAULT_RTOL = 1e-8
+DEFAULT_T_AFTER = 10.0
+
+
+@dataclass(frozen=True)
+class Solver:
+    """Integrator settings.
+
+    Parameters
+    ----------
+    rtol, atol : float
+        Tolerances of the adaptive Dormand-Prince 5(4) integrator (SciPy's
+        RK45 error control).  ``atol`` defaults to ``rtol * 1e-2`` (state in
+        rad and rad/s).
+    dt : float, optional
+        Fixed step [s]; switches to fixed-step DP5 (events are still located
+        on the dense output).
+    max_steps : int
+        Step budget (accepted + rejected); exceeding it is reported as the
+        status "failed:step-budget", never silently.
+    max_step : float
+        Largest adaptive step [s].
+    record_breakpoints : bool
+        Treat every record sample as a breakpoint (no step straddles a kink of
+        the interpolated record).
+    eps_omega, eps_t : float
+        Chatter-to-rest thresholds [rad/s, s] (physics.md 7).
+    """
+
+    rtol: float = DEFAULT_RTOL
+    atol: float | None = None
+    dt: float | None = None
+    max_steps: int = 2_000_000
+    max_step: float = math.inf
+    record_breakpoints: bool = True
+    eps_omega: float = 1e-9
+    eps_t: float = 1e-9
+
+    def __post_init__(self):
+        V.in_open("rtol", self.rtol, 1e-15, 1.0)
+        if self.atol is not None:
+            V.positive("atol", self.atol)
+        if self.dt is not None:
+            V.positive("dt", self.dt)
+        V.integer("max_steps", self.max_steps, 1, V.MAX_STEPS)
+        if not (self.max_step == math.inf or V._is_number(self.max_step)
+                and V.positive("max_step", self.max_step)):
+            raise ValueError(f"max_step must be > 0 (inf: no limit), got {self.max_step!r}")
+        V.boolean("record_breakpoints", self.record_breakpoints)
+        V.non_negative("eps_omega", self.eps_omega)
+        V.non_negative("eps_t", self.eps_t)
+
+    def check_fixed_steps(self, span, what="the run"):
+        """With a fixed step, refuse a run of ``span`` seconds that needs more steps than
+        ``max_steps`` (it could only end in failed:step-budget, after the whole budget)."""
+        if not self.dt:
+            return
+        n = span / self.dt
+        if n > self.max_steps:
+            raise ValueError(f"dt = {self.dt:g} s needs {n:.3g} fixed steps for {what} of {span:.4g} s, more "
+                             f"than the step budget max_steps = {int(self.max_steps):,}; use a larger dt, a "
+                             f"shorter run or a larger max_steps (at most {V.MAX_STEPS:.0e})")
+
+    @property
+    def name(self):
+        return f"fixed dt={self.dt:g}" if self.dt else f"RK45 rtol={self.rtol:g}"
+
+    def options(self, t_end, early_exit, t0=0.0):
+        opt = np.zeros(L.N_OPT)
+        opt[L.O_RTOL] = self.rtol
+        opt[L.O_ATOL] = self.atol if self.atol is not None else self.rtol * 1e-2
+        opt[L.O_DT_FIXED] = self.dt or 0.0
+        opt[L.O_MAX_STEP] = self.max_step
+        opt[L.O_MAX_STEPS] = float(self.max_steps)
+        opt[L.O_T_END] = t_end
+        opt[L.O_EARLY_EXIT] = 1.0 if early_exit else 0.0
+        opt[L.O_RECORD_BREAKS] = 1.0 if self.record_breakpoints else 0.0
+        opt[L.O_EPS_OMEGA] = self.eps_omega
+        opt[L.O_EPS_T] = self.eps_t
+        opt[L.O_T0] = t0
+        return opt
+
+
+def make_solver(solver=None, rtol=None, atol=None, dt=None, **kw):
+    """A Solver from keyword shortcuts (``rtol=``, ``dt=`` ...)."""
+    if solver is not None:
+        if any(v is not None for v in (rtol, atol, dt)) or kw:
+            raise ValueError("give either solver= or rtol/atol/dt/..., not both")
+        if not isinstance(solver, Solver):
+            raise ValueError(f"solver must be a fastrock.Solver, got {type(solver).__name__}")
+        return solver
+    args = {k: v for k, v in dict(rtol=rtol, atol=atol, dt=dt, **kw).items() if v is not None}
+    return Solver(**args)

@@ -1,0 +1,168 @@
+"""Chunked parallel sweeps: progress (tqdm), Ctrl-C keeps finished rows."""
+from __future__ import annotations
+
+import os
+import sys
+import threading
+import warnings
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+from fastrock.kernels import layout as L
+
+
+class _LogLines:
+    """A stream for tqdm that writes whole lines: no carriage returns in a log file."""
+
+    def __init__(self, stream):
+        self.stream = stream
+
+    def write(self, text):
+        text = text.replace("\r", "").strip()
+        if text:
+            self.stream.write(text + "\n")
+
+    def flush(self):
+        self.stream.flush()
+
+
+class Progress:
+    """Progress of a sweep on stderr through tqdm (terminals, notebooks; a log file gets a line
+    every ``LOG_INTERVAL`` s instead of a stream of carriage returns)."""
+
+    #: Seconds between progress lines when stderr is no terminal (environment variable
+    #: FASTROCK_PROGRESS_INTERVAL overrides it).
+    LOG_INTERVAL = 30.0
+
+    @classmethod
+    def log_interval(cls):
+        text = os.environ.get("FASTROCK_PROGRESS_INTERVAL")
+        if text is None:
+            return cls.LOG_INTERVAL
+        try:
+            value = float(text)
+        except ValueError:
+            value = -1.0
+        if not (0.0 <= value < 1e6):
+            raise ValueError(f"FASTROCK_PROGRESS_INTERVAL must be a number of seconds >= 0, got {text!r}")
+        return value
+
+    def __init__(self, total, enabled=True, label="runs"):
+        self.total = total
+        self.enabled = enabled and total > 0
+        self.label = label
+        self.done = 0
+        self._bar = None
+        if self.enabled:
+            from tqdm.auto import tqdm
+            tty = getattr(sys.stderr, "isatty", lambda: False)()
+            self._bar = tqdm(total=total, unit=" " + label, file=sys.stderr if tty else _LogLines(sys.stderr),
+                             dynamic_ncols=True, mininterval=0.1 if tty else self.log_interval(),
+                             smoothing=0.1)
+
+    def stage(self, text):
+        """Show ``text`` ahead of the bar (e.g. "compiling ... (first use)"); "" clears it."""
+        if self._bar is not None:
+            self._bar.set_description_str(text, refresh=True)
+
+    def update(self, n):
+        self.done += n
+        if self._bar is not None:
+            self._bar.update(n)
+
+    def close(self):
+        if self._bar is not None:
+            self._bar.close()
+
+
+_EXECUTOR = None
+
+
+def call_kernel(kernel, *args, opt):
+    """Call a kernel so that Ctrl-C stops it within one integration step.
+
+    Kernels release the GIL (``nogil``), so the call runs on a worker thread
+    while the main thread waits in Python, where KeyboardInterrupt arrives.
+    It then sets the abort flag of every run (``opt[..., O_ABORT]``, the
+    array the kernel reads), waits for the kernel to return (its unfinished
+    runs report ``failed:interrupted``) and raises KeyboardInterrupt again.
+    Off the main thread (Dask workers) the kernel is called directly.
+    """
+    global _EXECUTOR
+    if threading.current_thread() is not threading.main_thread():
+        return kernel(*args)
+    if _EXECUTOR is None:
+        _EXECUTOR = ThreadPoolExecutor(1, thread_name_prefix="fastrock-kernel")
+    future = _EXECUTOR.submit(kernel, *args)
+    try:
+        return future.result()
+    except KeyboardInterrupt:
+        opt[..., L.O_ABORT] = 1.0
+        future.result()
+        raise
+
+
+def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=True, label="runs",
+              model=None, reraise_when_complete=False):
+    """Run a sweep kernel over rows in chunks.
+
+    Returns (status, MET, YF, n_done).  On KeyboardInterrupt the finished
+    chunks are returned (n_done < n) with a warning, never lost.  A Ctrl-C
+    that lands after every run has finished returns the complete result,
+    or, with ``reraise_when_complete`` (callers that run many sweeps and
+    must stop at the next one), raises KeyboardInterrupt again.  With
+    ``progress``, the first call of a model's kernel in this process
+    (``model``: its registry name) is announced before it may compile.
+    """
+    n = Y0.shape[0]
+    status = np.full(n, L.RUNNING, dtype=np.int64)
+    MET = np.full((n, L.N_MET), np.nan)
+    YF = np.full(Y0.shape, np.nan)
+    if chunk_size is None:
+        chunk_size = max(256, min(4096, n // 20 + 1))
+    else:
+        from fastrock._validate import integer
+        chunk_size = integer("chunk_size", chunk_size, 1)     # 0 would never advance
+    first_use = progress and model is not None and not getattr(sweep_kernel, "signatures", ())
+    if first_use:
+        from fastrock.running.warmup import compile_notice
+        sys.stderr.write(compile_notice(model, sweep_kernel) + "\n")
+        sys.stderr.flush()
+    bar = Progress(n, progress and n > chunk_size, label)
+    if first_use:
+        bar.stage(f"compiling {model} (first use)")
+    done = 0
+    try:
+        while done < n:
+            stop = min(n, done + chunk_size)
+            sl = slice(done, stop)
+            st = np.empty(stop - done, np.int64)
+            met = np.empty((stop - done, L.N_MET))
+            yf = np.empty((stop - done, Y0.shape[1]))
+            opt = np.array(OPT[sl], order="C")
+            try:
+                call_kernel(sweep_kernel, np.ascontiguousarray(Y0[sl]), np.ascontiguousarray(PAR[sl]),
+                            np.ascontiguousarray(HDR[sl]), smp, opt, st, met, yf, opt=opt)
+            except KeyboardInterrupt:
+                # keep the chunk's runs that finished before the first one stopped
+                k = int(np.argmax(st == L.FAIL_INTERRUPTED)) if (st == L.FAIL_INTERRUPTED).any() else st.size
+                status[done:done + k] = st[:k]
+                MET[done:done + k] = met[:k]
+                YF[done:done + k] = yf[:k]
+                done += k
+                raise
+            status[sl] = st
+            MET[sl] = met
+            YF[sl] = yf
+            done = stop
+            if first_use and sl.start == 0:
+                bar.stage("")
+            bar.update(stop - sl.start)
+    except KeyboardInterrupt:
+        if done == n and reraise_when_complete:
+            raise
+        warnings.warn(f"interrupted: returning the {done} of {n} runs that finished", stacklevel=3)
+    finally:
+        bar.close()
+    return status, MET, YF, done
