@@ -14,8 +14,9 @@ import numpy as np
 
 from .config import jit
 from .layout import (EXC_HALF_SINE, EXC_NONE, EXC_ONE_COSINE, EXC_ONE_SINE,
-                     EXC_RECTANGULAR, EXC_SAMPLED, N_HDR, X_AMP, X_DT,
-                     X_DUR, X_KIND, X_N, X_OFFSET, X_OMEGA, X_SIGN, X_T0)
+                     EXC_RECTANGULAR, EXC_SAMPLED, N_HDR, S_CM, S_G_N, S_G_T,
+                     S_ON, S_SM, X_AMP, X_DT, X_DUR, X_KIND, X_N, X_OFFSET,
+                     X_OMEGA, X_SIGN, X_T0)
 
 
 @jit
@@ -53,18 +54,37 @@ def channel_value(t, hdr, c, smp):
 
 @jit
 def ground(t, hdr, smp):
-    """(a_g, a_v): horizontal and vertical ground accelerations at t."""
+    """(a_g, a_v): the ground's acceleration along and normal to the ground
+    surface at t, gravity's component along a slope included (layout.S_ON):
+    on level ground the horizontal and vertical channels."""
     ah, _ = channel_value(t, hdr, 0, smp)
     av, _ = channel_value(t, hdr, N_HDR, smp)
+    if hdr[S_ON] != 0.0:
+        cm = hdr[S_CM]
+        sm = hdr[S_SM]
+        return (ah * cm - av * sm - hdr[S_G_T],
+                av * cm + ah * sm + hdr[S_G_N])
     return ah, av
 
 
 @jit
 def ground_rates(t, hdr, smp):
-    """(a_g, da_g/dt, a_v, da_v/dt) at t."""
+    """(a_g, da_g/dt, a_v, da_v/dt) at t, in the frame of ``ground``."""
     ah, dah = channel_value(t, hdr, 0, smp)
     av, dav = channel_value(t, hdr, N_HDR, smp)
+    if hdr[S_ON] != 0.0:
+        cm = hdr[S_CM]
+        sm = hdr[S_SM]
+        return (ah * cm - av * sm - hdr[S_G_T], dah * cm - dav * sm,
+                av * cm + ah * sm + hdr[S_G_N], dav * cm + dah * sm)
     return ah, dah, av, dav
+
+
+@jit
+def on_slope(hdr):
+    """True on sloping ground: a_v' is then not zero even without a
+    vertical channel."""
+    return hdr[S_ON] != 0.0
 
 
 @jit

@@ -134,7 +134,21 @@ X_N = 8        # number of samples
 N_HDR = 9
 H_CHANNEL = 0          # horizontal block starts here
 V_CHANNEL = N_HDR      # vertical block starts here
-N_EXC = 2 * N_HDR
+# sloping ground: the kernels work in the slope's frame (x along the slope,
+# positive downhill; z normal to it).  ground() turns the channels (a_h, a_v)
+# into that frame: a_g' = a_h c_m - a_v s_m - g sin(phi),
+# a_v' = a_v c_m + a_h s_m + (g cos(phi) - g), so G' = g + a_v' is the normal
+# component of gravity less the ground's acceleration.  (c_m, s_m) =
+# (cos phi, sin phi) for channels given horizontal/vertical, (1, 0) for
+# channels given along/normal to the slope.  S_ON = 0: level ground, and
+# ground() returns the channels untouched.
+S_BLOCK = 2 * N_HDR
+S_ON = S_BLOCK
+S_CM = S_BLOCK + 1
+S_SM = S_BLOCK + 2
+S_G_T = S_BLOCK + 3     # m/s^2, g sin(phi)
+S_G_N = S_BLOCK + 4     # m/s^2, g cos(phi) - g (= -2 g sin^2(phi/2))
+N_EXC = 2 * N_HDR + 5
 
 EXC_NONE = 0
 EXC_ONE_SINE = 1
