@@ -171,6 +171,15 @@ P_THETA_W = 6       # rad, limit angle
 P_E_W = 7           # wall restitution
 P_HOGAN = 8         # 1: gap d = 0, Hogan's one-sided map
 N_PAR_RIGID = 10
+# asymmetric rigid body (kernels.rigid, the rigid_body entries): the rigid
+# entries above hold the side of pivot s = +1 (the right base corner, at
+# (b2, -h2) from the centre of mass: alpha_2, p_2, and P_E the restitution of
+# an impact from pivot +1 onto pivot -1); these hold the side of pivot -1
+P_ALPHA_NEG = 10    # rad, alpha_1 = atan(b1/h1)
+P_P_NEG = 11        # rad/s, p_1
+P_E_NEG = 12        # restitution of an impact from pivot -1 onto pivot +1
+P_IO_RATIO = 13     # I_O,1 / I_O,2: inertia about pivot -1 over that about +1
+N_PAR_RIGID_BODY = 14
 
 # rigid block with friction (kernels.friction), after the rigid entries
 Q_B = 10            # m, half-width

@@ -2,7 +2,14 @@
 
 State ``y = (theta, theta')`` [rad, rad/s]; discrete state: REST (static)
 or ROCK about pivot s.  Parameters ``par`` (indices P_*): alpha [rad],
-p [rad/s], e [-], g [m/s^2], theta_over [rad].  Events while rocking:
+p [rad/s], e [-], g [m/s^2], theta_over [rad].
+
+Two sets of entries: ``rigid_simulate``/``rigid_sweep``, the symmetric
+block, and ``rigid_body_simulate``/``rigid_body_sweep``, a body whose two
+base corners have their own alpha_k, p_k (p_k^2 = M g R_k / I_O,k) and each
+impact its own restitution (layout P_ALPHA_NEG ..., N_PAR_RIGID_BODY; see
+"Asymmetric body" below).  With equal sides the two give bit-identical runs.
+Events while rocking (both):
 
 0 impact        g = s*theta                 terminal
 1 overturn      g = theta_over - s*theta    terminal
@@ -30,6 +37,8 @@ from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_FLIGHT, EV_IMPACT,
 
 from .layout import (N_PAR_RIGID as N_PAR, P_ALPHA, P_E, P_E_W, P_G,  # noqa: E402,F401
                      P_HOGAN, P_P, P_THETA_OVER, P_THETA_W, P_WALL_SIDE)
+from .layout import (N_PAR_RIGID_BODY, P_ALPHA_NEG, P_E_NEG,  # noqa: E402,F401
+                     P_IO_RATIO, P_P_NEG)
 
 # An exceedance of the uplift threshold G tan(alpha) smaller than this
 # (relative) counts as touching it: a record whose peak sits one ulp above
@@ -358,10 +367,14 @@ def fall_to_overturn(t, y, par, disc, met, log, cnt):
     ``overturns_after_excitation``: log the first passage of alpha (if it is
     still to come) and the overturning as the integrated run does, and leave
     y and met[M_T_FINAL] at the overturning state."""
-    s = disc[D_PIVOT]
-    alpha = par[P_ALPHA]
-    p = par[P_P]
-    theta_over = par[P_THETA_OVER]
+    fall_on_side(t, y, disc[D_PIVOT], par[P_ALPHA], par[P_P],
+                 par[P_THETA_OVER], disc, met, log, cnt)
+
+
+@jit
+def fall_on_side(t, y, s, alpha, p, theta_over, disc, met, log, cnt):
+    """``fall_to_overturn`` on pivot s of slenderness alpha and frequency
+    parameter p (scalars)."""
     _falls, c, dt_alpha, dt_over = overturns_after_excitation(
         y[0], y[1], s, alpha, p, theta_over)
     if np.isfinite(dt_alpha):
@@ -446,6 +459,260 @@ def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
     return status
 
 
+# ------------------------------------------------------- asymmetric body
+# A body whose base corners sit at (-b1, -h1) and (b2, -h2) from the centre
+# of mass rocks on pivot s with that corner's alpha_s, p_s (Housner's EOM
+# holds about either corner with its own values), and an impact from pivot s
+# onto -s keeps the angular momentum about the new pivot:
+#     theta'+ = e_s theta'-,  e_s = (I_G + M r_s . r_-s) / I_O,-s
+# (r_k the vector from corner k to the centre of mass; the front end computes
+# e_s, or takes a given e).  The rigid entries of ``par`` hold pivot +1,
+# P_ALPHA_NEG, P_P_NEG, P_E_NEG pivot -1 (kernels/layout.py).  Each function
+# below performs, for equal sides, the same floating-point operations as its
+# symmetric counterpart above, so the runs are bit-identical.
+
+@jit
+def body_rhs(t, y, par, disc, hdr, smp, out):
+    theta = y[0]
+    w = y[1]
+    s = disc[D_PIVOT]
+    if s > 0:
+        alpha = par[P_ALPHA]
+        p = par[P_P]
+    else:
+        alpha = par[P_ALPHA_NEG]
+        p = par[P_P_NEG]
+    g = par[P_G]
+    ag, av = ground(t, hdr, smp)
+    out[0] = w
+    out[1] = housner(theta, s, alpha, p, g, ag, av)
+
+
+@jit
+def body_event(k, t, y, par, disc, hdr, smp):
+    s = disc[D_PIVOT]
+    theta = y[0]
+    w = y[1]
+    if k == K_IMPACT:
+        return s * theta, s * w, True
+    if k == K_OVERTURN:
+        return par[P_THETA_OVER] - s * theta, -s * w, True
+    if s > 0:
+        alpha = par[P_ALPHA]
+        p = par[P_P]
+    else:
+        alpha = par[P_ALPHA_NEG]
+        p = par[P_P_NEG]
+    g = par[P_G]
+    if k == K_PASS_ALPHA:
+        return alpha - s * theta, -s * w, False
+    if k == K_PEAK:
+        ag, av = ground(t, hdr, smp)
+        return s * w, s * housner(theta, s, alpha, p, g, ag, av), False
+    if int(hdr[N_HDR + X_KIND]) == EXC_NONE:
+        return np.inf, 0.0, True        # G = g > 0 throughout
+    _ag, _dag, av, dav = ground_rates(t, hdr, smp)
+    return g + av, dav, True
+
+
+@jit
+def body_static_margin(t, y, par, disc, hdr, smp):
+    """Full contact holds while the ground acceleration stays below the
+    uplift threshold of the side it tips the body to: a_g > 0 tips it onto
+    pivot -1 (a_g <= G tan alpha_1), a_g < 0 onto pivot +1
+    (-a_g <= G tan alpha_2)."""
+    alpha_pos = par[P_ALPHA]
+    alpha_neg = par[P_ALPHA_NEG]
+    g = par[P_G]
+    ag, av = ground(t, hdr, smp)
+    G = g + av
+    return min(G * math.tan(alpha_neg) * (1.0 + UPLIFT_RTOL) - ag,
+               G * math.tan(alpha_pos) * (1.0 + UPLIFT_RTOL) + ag)
+
+
+@jit
+def body_start_rocking_or_rest(t, y, par, disc, hdr, smp, met, log, cnt):
+    """From theta = theta' = 0: the uplift test on the side the ground
+    acceleration tips the body to, else REST."""
+    ag, av = ground(t, hdr, smp)
+    G = par[P_G] + av
+    if G <= 0.0:
+        log_event(log, cnt, t, EV_FLIGHT, 0.0, 0.0, y[0], disc[D_PIVOT])
+        return FLIGHT
+    s = -1 if ag > 0.0 else 1
+    alpha = par[P_ALPHA] if s > 0 else par[P_ALPHA_NEG]
+    if abs(ag) > G * math.tan(alpha) * (1.0 + UPLIFT_RTOL):
+        disc[D_MODE] = MODE_ROCK
+        disc[D_STATIC] = 0
+        disc[D_PIVOT] = s
+        if np.isnan(met[M_T_UPLIFT]):
+            met[M_T_UPLIFT] = t
+        log_event(log, cnt, t, EV_UPLIFT, 0.0, 0.0, y[0], disc[D_PIVOT])
+    else:
+        disc[D_MODE] = MODE_REST
+        disc[D_STATIC] = 1
+    return RUNNING
+
+
+@jit
+def body_ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    """Impact at theta = 0 from pivot s onto -s: theta'+ = e_s theta'-
+    (P_E for s = +1, P_E_NEG for s = -1), then the chatter-to-rest rule of
+    physics.md 7.  The kinetic energies about the two pivots differ by the
+    inertia ratio I_O,1 / I_O,2 (FASTROCK_DEBUG check)."""
+    s = disc[D_PIVOT]
+    e = par[P_E] if s > 0 else par[P_E_NEG]
+    ratio = par[P_IO_RATIO]
+    pre = y[1]
+    post = e * pre
+    y[0] = 0.0
+    y[1] = post
+    disc[D_PIVOT] = -s
+    met[M_IMPACTS] += 1
+    if s > 0:
+        check_energy(pre * pre, ratio * post * post, met)
+    else:
+        check_energy(ratio * pre * pre, post * post, met)
+    log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)
+    chatter = abs(post) < opt[O_EPS_OMEGA] or \
+        t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
+    met[M_T_LAST_IMPACT] = t
+    if chatter:
+        y[1] = 0.0
+        st = body_start_rocking_or_rest(t, y, par, disc, hdr, smp, met, log,
+                                        cnt)
+        if disc[D_MODE] == MODE_REST:
+            log_event(log, cnt, t, EV_REST, post, 0.0, 0.0, disc[D_PIVOT])
+        return st
+    return RUNNING
+
+
+@jit
+def body_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    if k < 0:
+        return body_start_rocking_or_rest(t, y, par, disc, hdr, smp, met, log,
+                                          cnt)
+    if k == K_IMPACT:
+        return body_ground_impact(t, y, par, disc, hdr, smp, opt, met, log,
+                                  cnt)
+    if k == K_OVERTURN:
+        return overturned(t, y[0], y[1], disc[D_PIVOT], met, log, cnt)
+    if k == K_FLIGHT:
+        log_event(log, cnt, t, EV_FLIGHT, y[1], y[1], y[0], disc[D_PIVOT])
+        return FLIGHT
+    observe(k, t, y, disc, met, log, cnt)
+    return RUNNING
+
+
+@jit
+def bounded_after_excitation_sides(theta, w, s, alpha_s, p_s, e_s, alpha_o,
+                                   p_o, e_o):
+    """``bounded_after_excitation`` per side (exact as well): pivot s with
+    alpha_s, p_s, e_s (the restitution of the impact leaving it), the other
+    pivot with alpha_o, p_o, e_o.
+
+    Energies are counted in units of M g R_k on the side k the body rocks on
+    (``free_energy``).  An impact from k onto j turns E into
+    e_k^2 (p_k / p_j)^2 E: theta'^2 / (2 p^2) with the post-impact speed and
+    the new side's p.  Impacts never add energy (the front end checks
+    e_k^2 I_O,j / I_O,k <= 1 for a given e; the angular-momentum map
+    satisfies it by Cauchy-Schwarz), so once the body is inside the well
+    with energy below the barrier 1 - cos(alpha_k) of the side of its next
+    half-cycle and of the one after, no later half-cycle on either side can
+    reach its alpha.  Returns (safe, peak 1, peak 2), signed rotations."""
+    if not s * theta < alpha_s:
+        return False, 0.0, 0.0   # past the unstable equilibrium
+    E = 0.5 * w * w / (p_s * p_s) + math.cos(alpha_s - s * theta) \
+        - math.cos(alpha_s)
+    if not E < 1.0 - math.cos(alpha_s):
+        return False, 0.0, 0.0
+    rho_s = (e_s * e_s) * ((p_s * p_s) / (p_o * p_o))
+    rho_o = (e_o * e_o) * ((p_o * p_o) / (p_s * p_s))
+    if s * w > 0.0:
+        side1 = s
+        a1 = alpha_s
+        a2 = alpha_o
+        e1 = E
+        e2 = rho_s * e1
+        e_other = e2
+    else:
+        side1 = -s
+        a1 = alpha_o
+        a2 = alpha_s
+        e1 = rho_s * E
+        e2 = rho_o * e1
+        e_other = e1
+    if not e_other < 1.0 - math.cos(alpha_o):
+        return False, 0.0, 0.0
+    return (True, side1 * peak_from_energy(a1, e1),
+            -side1 * peak_from_energy(a2, e2))
+
+
+@jit
+def body_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
+    # every array entry read first (see "Hot paths" above)
+    theta = y[0]
+    w = y[1]
+    s = disc[D_PIVOT]
+    mode = disc[D_MODE]
+    if s > 0:
+        alpha = par[P_ALPHA]
+        p = par[P_P]
+        e = par[P_E]
+        alpha_o = par[P_ALPHA_NEG]
+        p_o = par[P_P_NEG]
+        e_o = par[P_E_NEG]
+    else:
+        alpha = par[P_ALPHA_NEG]
+        p = par[P_P_NEG]
+        e = par[P_E_NEG]
+        alpha_o = par[P_ALPHA]
+        p_o = par[P_P]
+        e_o = par[P_E]
+    theta_over = par[P_THETA_OVER]
+    early = opt[O_EARLY_EXIT] != 0.0
+    t_end = opt[O_T_END]
+    track_rotation(theta, met)
+    if at_end:
+        return final_status(disc, met)
+    if not early or mode != MODE_ROCK or t < met[M_T_EXC_END]:
+        return RUNNING
+    safe, pk1, pk2 = bounded_after_excitation_sides(theta, w, s, alpha, p, e,
+                                                    alpha_o, p_o, e_o)
+    if safe:
+        track_rotation(pk1, met)
+        track_rotation(pk2, met)
+        return SAFE_BOUNDED
+    falls, _c, _dt_alpha, dt_over = overturns_after_excitation(
+        theta, w, s, alpha, p, theta_over)
+    if falls and t + dt_over <= t_end:
+        if met[M_IMPACTS] > 0:
+            return OVERTURN_MODE1
+        return OVERTURN_MODE2
+    return RUNNING
+
+
+@jit
+def body_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+             log, cnt):
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
+    status = integrate_hybrid(body_rhs, body_event, body_transition,
+                              body_static_margin, body_after_step, N_EVENTS,
+                              y, par, disc, hdr, smp, opt, t_eval, met,
+                              hist_t, hist_y, hist_d, log, cnt)
+    if (status == OVERTURN_MODE1 or status == OVERTURN_MODE2) and \
+            np.isnan(met[M_T_OVER]):
+        s = disc[D_PIVOT]
+        if s > 0:
+            fall_on_side(met[M_T_FINAL], y, s, par[P_ALPHA], par[P_P],
+                         par[P_THETA_OVER], disc, met, log, cnt)
+        else:
+            fall_on_side(met[M_T_FINAL], y, s, par[P_ALPHA_NEG],
+                         par[P_P_NEG], par[P_THETA_OVER], disc, met, log, cnt)
+    return status
+
+
 # ---------------------------------------------------------------- entries
 @jit
 def rigid_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
@@ -460,3 +727,18 @@ def rigid_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
     """Many independent runs in parallel: row i of Y0/PAR/HDR/OPT -> row i
     of status/MET/YF.  No time history, no event log."""
     sweep_rows(run, Y0, PAR, HDR, smp, OPT, status, MET, YF)
+
+
+@jit
+def rigid_body_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                        hist_d, log, cnt):
+    """One run of the asymmetric body (``par`` of length N_PAR_RIGID_BODY),
+    as ``rigid_simulate``."""
+    return body_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                    hist_d, log, cnt)
+
+
+@jit_parallel
+def rigid_body_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Many runs of the asymmetric body in parallel, as ``rigid_sweep``."""
+    sweep_rows(body_run, Y0, PAR, HDR, smp, OPT, status, MET, YF)
