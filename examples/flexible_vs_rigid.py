@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """Flexible rocking bodies against the rigid block of the same alpha and p (issue #5).
+===================================================================================
 
 One-sine pulses, alpha = 0.3, p = 2 rad/s, grid a_p/(g tan alpha) = 1..6 x omega_p/p = 0.5..10
 (80 x 80 by default).  Four panels in the same axes:
@@ -16,6 +17,7 @@ prints, for a few pulse frequencies, the smallest amplitude that overturns each 
 Usage: ``python examples/flexible_vs_rigid.py [--n 80]`` (a few minutes on 2 cores).
 
 What it shows (80 x 80): it is not simply "flexibility helps".
+
 * Long pulses (omega_p/p <~ 3): the flexible body is as vulnerable or more.  The column amplifies
   the base shear and its deflection u moves the mass toward the corner (restoring arm B - s u), so
   the soft body (omega_n/p = 3) uplifts below g tan(alpha) and overturns at a_p = 1.00 g tan(alpha)

@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """Incremental dynamic analysis and fragility curves of a rock block.
+==================================================================
 
 A block of half-width b = 0.25 m and half-height h = 1.25 m (b/h = 0.2,
 uplift at PGA = g tan(alpha) = 0.2 g) stands free (two-sided rocking) or next
@@ -10,7 +11,7 @@ record) is run with both polarities, each scaled to 20 PGA levels from 0.1 to
 curves by maximum likelihood with 90 % bootstrap bands (records resampled):
 
 * P(overturning | PGA) for both settings;
-* P(max |theta|/alpha > 0.5 | PGA/(g tan alpha)), the dimensionless intensity.
+* ``P(max |theta|/alpha > 0.5 | PGA/(g tan alpha))``, the dimensionless intensity.
 
 Writes ``out/fragility.png`` and the study folder ``out/study_fragility/``
 (Parquet; a second run resumes and only refits).

@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """Sliding of a flexible rocking body: the friction study of Farooghi-Mehr & Wittich (issue #6).
+=============================================================================================
 
 Body: alpha = 0.3, omega_n/p = 9, zeta = 0.05, full-contact impact map, rigid base block
 m_b = 0.1 m (needed for a well-posed sliding problem, physics.md 4.4; used for every mu, the
@@ -24,7 +25,7 @@ pivot while the body rocks.  Three rules, each a map per mu:
 Writes to OUT (default ``docs/``); the maps (a)-(d) use DEFAULT_LIFT_OFF:
 
 * ``friction_spectra.png``     (a) outcome maps, one per mu, the reference's boundary dashed
-* ``friction_sliding.png``     (b) max |d| maps (overturned cells grey) and max |d| against mu
+* ``friction_sliding.png``     (b) ``max |d|`` maps (overturned cells grey) and ``max |d|`` against mu
 * ``friction_boundaries.png``  (c) overturning and mode-2 boundaries of every mu overlaid
 * ``friction_histories.png``   (d) u/u_y, theta/alpha and d at omega_p/p = 1.3 and 1.5,
                                    mu_s = 0.4 (and mu = inf), a_p = 1.6 g tan(alpha)

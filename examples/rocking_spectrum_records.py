@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """Rocking spectrum of the shared recorded earthquakes: beta against Tp/Tm.
+========================================================================
 
 Runs every record in ``../shared/data/records/`` (override with
 FASTROCK_RECORDS_DIR; the Sylmar file has no unit in its header and is in

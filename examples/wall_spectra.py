@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """One-sided rocking beside a wall: the set-up of Mennitti, Maiorano & Aversa (2021).
+==================================================================================
 
 Block b = 0.5 m, h = 2.5 m (half-dimensions: p = 1.70 rad/s, alpha = 0.197 rad), Housner's
 restitution e = 1 - 1.5 sin^2(alpha) = 0.942 (energy ratio r = e^2 = 0.888), an elastic tall

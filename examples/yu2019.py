@@ -1,5 +1,6 @@
 #!/usr/bin/env python
 """Yu, Gutschmidt & MacRae's free-rocking test: rocking against vibration.
+=======================================================================
 
 The physical model (half-width a = 0.054 m, half-height h = 0.205 m, R = 0.212 m,
 alpha = 14.8 deg, m = 3.40 kg, I0 = 0.3268 kg m^2) is released from rest at 8, 10 and
@@ -11,7 +12,8 @@ The stated I0 is larger than any body inside the 2a x 2h rectangle can have (<= 
 attachments -- so the block is built with ``RigidBlock.from_inertia`` (p = 4.652 rad/s,
 Housner's e = 1 - (m R^2/I0)(1 - cos 2 alpha) = 0.939), not as a uniform rectangle.
 
-Models and parameters
+Models and parameters:
+
 * Housner rigid block, published parameters: p and e above, simulated with
   ``fastrock.simulate(theta0=...)``.
 * Two-spring foundation (physics.md §5.1), "published" = the published block plus corner
