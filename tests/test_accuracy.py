@@ -1,6 +1,6 @@
-"""``fastrock accuracy`` (work-precision, fastrock/accuracy.py): the wall and friction families,
-their error measures, and the CLI options.  Small grids and few settings: the figures in docs/
-come from the full command (README, "Accuracy against time")."""
+"""``fastrock accuracy`` (work-precision, fastrock/analyses/accuracy.py): the wall and friction
+families, their error measures, and the CLI options.  Small grids and few settings: the figures in docs/
+come from the full command (docs/validation/work_precision.md)."""
 from __future__ import annotations
 
 import math

@@ -262,9 +262,10 @@ def test_frictional_wall_impact_in_flight(b, h, mu_w, e_w, side, base, th, om, v
 
 @pytest.mark.slow
 def test_twenty_thousand_random_wall_impacts_each_way():
-    """The README's count: 20 000 seeded random frictional wall impacts with a pivot on the ground
-    (mu_s 0.01-1e6, mu_w 1e-6-1e6, e_w 0-1, top or base corner) and 20 000 in flight (mu_w up to
-    1e9): no kinetic energy rise, every impulse in its cone, no contact left approaching."""
+    """The count in docs/guide/models/friction.md (wall friction): 20 000 seeded random
+    frictional wall impacts with a pivot on the ground (mu_s 0.01-1e6, mu_w 1e-6-1e6, e_w 0-1,
+    top or base corner) and 20 000 in flight (mu_w up to 1e9): no kinetic energy rise, every
+    impulse in its cone, no contact left approaching."""
     rng = np.random.default_rng(2026)
     done = 0
     while done < 20000:

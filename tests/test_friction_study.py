@@ -3,7 +3,7 @@
 The example's core (``run_study``, ``summarize``) runs the study body (alpha = 0.3,
 omega_n/p = 9, zeta = 0.05, m_b = 0.1 m) under one-sine pulses for mu_s = 0.4, 0.8 and inf,
 with lift_off "flight" (the default), "hold" and "stop".  Each assertion below also holds on the
-README's 80 x 80 grid.
+80 x 80 grid of docs/validation/reproductions.md.
 """
 import importlib.util
 import math
