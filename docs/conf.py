@@ -56,6 +56,7 @@ nitpicky = False
 doctest_global_setup = """
 import numpy as np
 import fastrock as fr
+from fastrock import *
 """
 doctest_test_doctest_blocks = "default"
 

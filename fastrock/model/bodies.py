@@ -145,7 +145,9 @@ DEFAULT_BASE_MASS_RATIO = 0.1
 class FlexibleBody:
     """Lumped mass on an elastic column on a rigid rocking base (physics.md 3).
 
-    Parameters (the literature's groups)
+    The parameters are the literature's dimensionless groups.
+
+    Parameters
     ----------
     alpha : float
         Slenderness atan(B/H) [rad], 0 < alpha < pi/2.

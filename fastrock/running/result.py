@@ -101,7 +101,7 @@ class SimulationResult:
     status : str
         Refined status, e.g. "safe:rest" (see fastrock.outcomes).
     metrics : dict
-        max |theta| (``max_rotation`` [rad], ``max_rotation_ratio``), impacts,
+        ``max |theta|`` (``max_rotation`` [rad], ``max_rotation_ratio``), impacts,
         times of uplift / overturning [s], nfev, steps ...
     kernel : str
         Name of the compiled kernel that ran.
