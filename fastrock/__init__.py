@@ -33,6 +33,7 @@ from fastrock.constants import G_STANDARD, VERSION
 from fastrock.model.excitation import Pulse, SampledMotion
 from fastrock.model.friction import Friction
 from fastrock.model.wall import Wall
+from fastrock.model.ground import Ground
 from fastrock.model.foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation
 from fastrock.io.ground_motion import GroundMotion
 from fastrock.io.readers import read_record
@@ -57,7 +58,7 @@ del foundation_predictors
 
 __all__ = [
     # bodies, scenes and excitations
-    "RigidBlock", "FlexibleBody", "housner_restitution", "Wall", "Friction",
+    "RigidBlock", "FlexibleBody", "housner_restitution", "Wall", "Friction", "Ground",
     "TwoSpringFoundation", "SwitchingFoundation", "LinearVibration",
     "Pulse", "SampledMotion", "GroundMotion", "read_record", "Scene", "G_STANDARD",
     # running

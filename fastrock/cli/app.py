@@ -42,6 +42,13 @@ def _friction(args):
     return Friction(args.mu_s, args.mu_k, lift_off=args.lift_off)
 
 
+def _ground(args):
+    if not getattr(args, "slope", 0.0):
+        return None
+    from fastrock.model.ground import Ground
+    return Ground(slope=args.slope, direction=args.slope_direction)
+
+
 def _foundation(args, body):
     kind = getattr(args, "foundation", None)
     if kind is None:
@@ -78,6 +85,11 @@ def _add_body_options(p):
     w.add_argument("--wall-friction", type=float, default=0.0,
                    help="Coulomb friction mu_w of the wall contact [-] (default 0, frictionless; > 0 "
                         "needs the contact model: --mu-s, or --lift-off flight)")
+    gr = p.add_argument_group("sloping ground (rigid block)")
+    gr.add_argument("--slope", type=float, default=0.0,
+                    help="ground inclination phi [rad], descending toward +x (default 0, level)")
+    gr.add_argument("--slope-direction", default="horizontal", choices=("horizontal", "slope"),
+                    help="the excitation acts horizontally (default) or along the slope [-]")
     fd = p.add_argument_group("flexible foundation (rigid block with --b/--h)")
     fd.add_argument("--foundation", choices=("two-spring", "switching", "linear"),
                     help="stand the block on a flexible foundation (default: rigid ground)")
@@ -116,7 +128,7 @@ def cmd_spectrum(args):
                          f"{amps.size * freqs.size * len(signs):,} runs, more than {MAX_GRID_RUNS:,}")
     t0 = time.perf_counter()
     df = overturning_spectrum(body, amps, freqs, sign=signs, pulse=args.pulse, amplitude_unit=args.amplitude_unit,
-                              frequency_unit=args.frequency_unit, wall=wall, friction=_friction(args),
+                              frequency_unit=args.frequency_unit, wall=wall, friction=_friction(args), ground=_ground(args),
                               foundation=_foundation(args, body), mass=args.mass,
                               rtol=args.rtol, atol=args.atol, dt=args.dt, progress=not args.quiet)
     el = time.perf_counter() - t0
@@ -159,7 +171,8 @@ def cmd_simulate(args):
     body = _body(args)
     pulse = Pulse(amplitude=args.amplitude, frequency=args.frequency, sign=args.sign, kind=args.pulse,
                   amplitude_unit=args.amplitude_unit, frequency_unit=args.frequency_unit)
-    r = simulate(body, pulse, wall=_wall(args), friction=_friction(args), foundation=_foundation(args, body),
+    r = simulate(body, pulse, wall=_wall(args), friction=_friction(args), ground=_ground(args),
+                 foundation=_foundation(args, body),
                  mass=args.mass, theta0=args.theta0, rtol=args.rtol, atol=args.atol, dt=args.dt, duration=args.duration)
     m = r.metrics
     print(f"outcome {r.outcome} ({r.status}); kernel {r.kernel}")

@@ -194,9 +194,12 @@ def _check_time_resolution(exc, body):
                          f"the time origin)")
 
 
-def to_header(body, horizontal, vertical=None):
-    """Kernel header (float64[N_EXC]) and sample array for one run."""
+def to_header(body, horizontal, vertical=None, ground=None):
+    """Kernel header (float64[N_EXC]) and sample array for one run;
+    ``ground`` (a sloping :class:`fastrock.Ground`) fills the slope block."""
     hdr = np.zeros(L.N_EXC)
+    if ground is not None:
+        ground.fill_header(hdr, body.g)
     chunks = []
     offset = 0
     for c, exc in ((L.H_CHANNEL, as_excitation(horizontal)),
@@ -248,3 +251,15 @@ def end_time(body, horizontal, vertical=None):
         if exc is not None:
             t = max(t, exc.end_time(body))
     return t
+
+
+def channel_peak(hdr, smp, c=L.H_CHANNEL):
+    """Peak |acceleration| [m/s^2] of header channel ``c`` (0 if empty)."""
+    kind = int(hdr[c + L.X_KIND])
+    if kind == L.EXC_NONE:
+        return 0.0
+    amp = abs(float(hdr[c + L.X_AMP]))
+    if kind == L.EXC_SAMPLED:
+        off, n = int(hdr[c + L.X_OFFSET]), int(hdr[c + L.X_N])
+        return amp * float(np.max(np.abs(smp[off:off + n])))
+    return amp

@@ -151,14 +151,14 @@ MAX_HISTORY = 50_000_000
 
 
 def run_inputs(body, excitation, vertical, duration, t_after, t_eval, history_capacity, solver,
-               early_exit):
+               early_exit, ground=None):
     """Kernel inputs of one run: excitation header and samples, solver options
     (end time from ``duration`` or the excitation end + ``t_after``), output
     times and the history capacity."""
     early_exit = V.boolean("early_exit", early_exit)
     if history_capacity is not None:
         history_capacity = V.integer("history_capacity", history_capacity, 1, MAX_HISTORY)
-    hdr, smp = X.to_header(body, excitation, vertical)      # checks the excitations first
+    hdr, smp = X.to_header(body, excitation, vertical, ground)      # checks the excitations first
     t_exc = X.end_time(body, excitation, vertical)
     if duration is None:
         t_after = V.run_time("t_after", V.non_negative("t_after", t_after))

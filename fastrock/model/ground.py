@@ -1,0 +1,127 @@
+"""Ground: level or sloping (issue #17).
+
+On sloping ground every model works in the slope's frame: x along the
+surface, positive downhill, z normal to it.  Gravity then has a component
+g sin(phi) along the surface, which pushes the body downhill at every
+instant, and the normal component g cos(phi) is what holds it down.  The
+uplift and slip thresholds therefore differ downhill and uphill, and a
+block with Coulomb friction slides one way in all but violent shaking:
+Newmark's rigid sliding block is the special case of a stout block.
+"""
+import math
+from dataclasses import dataclass
+
+from .. import _validate as V
+from ..constants import G_STANDARD
+from ..kernels import layout as L
+
+DIRECTIONS = ("horizontal", "slope")
+#: models whose early decisions use closed forms of free rocking on level ground
+CLOSED_FORM_MODELS = ("rigid", "rigid_wall")
+
+
+@dataclass(frozen=True)
+class Ground:
+    """The surface the body stands on.
+
+    Parameters
+    ----------
+    slope : float
+        Inclination phi of the surface [rad], in [0, pi/2).  The surface
+        descends toward +x: positive slip and a positive rotation sense of
+        the body follow the downhill direction.  0 (the default) is level
+        ground, bit for bit the same results as giving no ground at all.
+    direction : {"horizontal", "slope"}
+        How the excitation's channels are applied.  "horizontal" (default):
+        the horizontal channel is horizontal and the vertical one vertical,
+        as a free-field record is; "slope": the horizontal channel acts
+        along the surface and the vertical one normal to it (the usual
+        reading of a Newmark sliding-block analysis, where the record is
+        the acceleration parallel to the slope).
+
+    Examples
+    --------
+    >>> import math
+    >>> from fastrock import Ground
+    >>> Ground(slope=math.radians(10)).slope_deg
+    10.0
+    """
+
+    slope: float = 0.0
+    direction: str = "horizontal"
+
+    def __post_init__(self):
+        phi = V.finite("slope", self.slope)
+        if not 0.0 <= phi < 0.5 * math.pi:
+            raise ValueError(f"slope must lie in [0, pi/2) rad, got {self.slope!r}")
+        object.__setattr__(self, "slope", phi)
+        V.choice("direction", self.direction, DIRECTIONS)
+
+    @property
+    def slope_deg(self):
+        """The inclination in degrees."""
+        return math.degrees(self.slope)
+
+    @property
+    def is_level(self):
+        return self.slope == 0.0
+
+    def fill_header(self, hdr, g=G_STANDARD):
+        """Write the slope block of a kernel excitation header (nothing on
+        level ground, so level runs see the header they always saw)."""
+        if self.is_level:
+            return
+        phi = self.slope
+        hdr[L.S_ON] = 1.0
+        if self.direction == "horizontal":
+            hdr[L.S_CM] = math.cos(phi)
+            hdr[L.S_SM] = math.sin(phi)
+        else:
+            hdr[L.S_CM] = 1.0
+            hdr[L.S_SM] = 0.0
+        hdr[L.S_G_T] = g * math.sin(phi)
+        hdr[L.S_G_N] = -2.0 * g * math.sin(0.5 * phi) ** 2
+
+    def check_scene(self, body, *, friction=None, flexible=False, foundation=None):
+        """Refuse a scene that this slope cannot hold at rest, or that the
+        models do not run on a slope yet, with an error naming ``slope``."""
+        if self.is_level:
+            return
+        where = f"slope = {self.slope:.6g} rad ({self.slope_deg:.4g} deg)"
+        if flexible or foundation is not None:
+            raise ValueError(f"{where}: sloping ground runs with a RigidBlock only so far (a flexible column "
+                             "or foundation would start away from its static deflection on the incline)")
+        demand = self.static_demand()
+        if demand >= math.tan(body.alpha):
+            raise ValueError(f"{where}: the block cannot stand on it: tan(slope) = {demand:.4g} >= tan(alpha) = "
+                             f"{math.tan(body.alpha):.4g} (its centre of mass lies beyond the downhill corner)")
+        if friction is not None and demand >= friction.mu_s:
+            raise ValueError(f"{where}: steeper than friction can hold at rest: tan(slope) = {demand:.4g} >= "
+                             f"mu_s = {friction.mu_s:g}")
+
+    def check_lift_off(self, body, peak_horizontal):
+        """The two-sided rocking model assumes the ground pushes: on a slope
+        the normal gravity g cos(phi) less the normal part of the horizontal
+        shaking, a_h sin(phi), must stay positive.  Refuse stronger shaking
+        (the contact model, ``Friction(..., lift_off="flight")``, follows
+        the body into flight)."""
+        if self.is_level or self.direction == "slope":
+            return
+        limit = body.g * math.cos(self.slope) / math.sin(self.slope)
+        if peak_horizontal >= limit:
+            raise ValueError(f"slope = {self.slope:.6g} rad: a horizontal peak of {peak_horizontal:.4g} m/s^2 "
+                             f">= g / tan(slope) = {limit:.4g} m/s^2 lifts the block off the incline; run it "
+                             "with Friction(..., lift_off='flight') (the contact model follows free flight)")
+
+    def static_demand(self):
+        """tan(phi): the ratio of the along-slope to the normal component of
+        gravity, which friction (mu_s) and the body's downhill slenderness
+        (tan alpha) must exceed for the body to stand at rest."""
+        return math.tan(self.slope)
+
+
+def as_ground(ground):
+    """None or a Ground; anything else is refused naming the field."""
+    if ground is None or isinstance(ground, Ground):
+        return None if ground is None or ground.is_level else ground
+    raise TypeError(f"ground: expected fastrock.Ground or None, got {type(ground).__name__}")
