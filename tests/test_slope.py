@@ -227,3 +227,21 @@ def test_cli_slope(tmp_path):
     assert len(df) == 6
     assert main(["spectrum", "--quiet", "--slope", "0.5", "--alpha", "0.25",
                  "--png", str(tmp_path / "x.png")]) == 2
+
+
+def test_scene_with_ground(tmp_path):
+    """A TOML scene's [ground] section reaches the run: the same result as simulate(ground=...)."""
+    toml = tmp_path / "slope.toml"
+    toml.write_text('[body]\nalpha = 0.25\np = 2.0\n'
+                    '[excitation]\nkind = "one-sine"\namplitude = 0.35\nfrequency = 0.5\n'
+                    '[friction]\nmu_s = 0.6\n'
+                    '[ground]\nslope = 0.05\n')
+    scene = fr.Scene.from_toml(toml)
+    assert "slope" in scene.effects
+    a = scene.run()
+    b = fr.simulate(fr.RigidBlock(alpha=0.25, p=2.0), fr.Pulse(0.35, 0.5), friction=fr.Friction(0.6),
+                    ground=fr.Ground(0.05))
+    _same(a, b)
+    toml.write_text('[body]\nalpha = 0.25\np = 2.0\n[ground]\nslope = 0.05\ntilt = 1\n')
+    with pytest.raises(ValueError, match=r"\[ground\].*tilt"):
+        fr.Scene.from_toml(toml)

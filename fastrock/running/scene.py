@@ -34,6 +34,7 @@ class Scene:
     wall: object = None
     friction: object = None
     foundation: object = None
+    ground: object = None
     mass: float = 1.0
     theta0: float = 0.0
     dtheta0: float = 0.0
@@ -64,6 +65,8 @@ class Scene:
             out.append("flight")
         if self.vertical is not None:
             out.append("vertical")
+        if self.ground is not None and not self.ground.is_level:
+            out.append("slope")
         return tuple(out)
 
     @property
@@ -73,7 +76,8 @@ class Scene:
 
     def run(self, **overrides):
         from fastrock.running.simulate import simulate
-        kw = dict(vertical=self.vertical, wall=self.wall, friction=self.friction, theta0=self.theta0, dtheta0=self.dtheta0,
+        kw = dict(vertical=self.vertical, wall=self.wall, friction=self.friction, ground=self.ground,
+                  theta0=self.theta0, dtheta0=self.dtheta0,
                   duration=self.duration, t_after=self.t_after, solver=self.solver)
         if self.foundation is not None:
             kw.update(foundation=self.foundation, mass=self.mass)
@@ -96,8 +100,8 @@ class Scene:
     @classmethod
     def from_dict(cls, data, base=None, name=""):
         base = Path(base or ".")
-        known = {"body", "excitation", "vertical", "wall", "friction", "foundation", "solver", "run", "output",
-                 "name"}
+        known = {"body", "excitation", "vertical", "wall", "friction", "foundation", "ground", "solver", "run",
+                 "output", "name"}
         unknown = set(data) - known
         if unknown:
             raise ValueError(f"unknown scene section(s) {sorted(unknown)}; known: {sorted(known)}")
@@ -117,6 +121,11 @@ class Scene:
             from fastrock.model.friction import Friction
             friction = _build(Friction, only_keys(as_table(data["friction"], "friction"), "friction",
                                               {"mu_s", "mu_k", "slide_tolerance", "lift_off"}), "friction")
+        ground = None
+        if "ground" in data:
+            from fastrock.model.ground import Ground
+            ground = _build(Ground, only_keys(as_table(data["ground"], "ground"), "ground",
+                                              {"slope", "direction"}), "ground")
         foundation, mass = (foundation_from_table(as_table(data["foundation"], "foundation"), body) if "foundation" in data
                             else (None, 1.0))
         solver = Solver(**only_keys(as_table(data.get("solver", {}), "solver"), "solver",
@@ -131,7 +140,7 @@ class Scene:
                 raise ValueError(f"[output] {k} must be a file name (a string), got {v!r}")
         out = {k: str(base / v) for k, v in out.items()}
         return cls(body=body, excitation=exc, vertical=vert, wall=wall, friction=friction, foundation=foundation,
-                   mass=mass, solver=solver,
+                   ground=ground, mass=mass, solver=solver,
                    name=str(data.get("name", name)), outputs=out, **run)
 
 
