@@ -245,3 +245,28 @@ def test_scene_with_ground(tmp_path):
     toml.write_text('[body]\nalpha = 0.25\np = 2.0\n[ground]\nslope = 0.05\ntilt = 1\n')
     with pytest.raises(ValueError, match=r"\[ground\].*tilt"):
         fr.Scene.from_toml(toml)
+
+
+def test_study_variant_on_a_slope(tmp_path):
+    """A study variant with a ground: every row equals simulate(ground=...) of the same scene."""
+    pytest.importorskip("pyarrow")
+    from fastrock.studies.definition import Study
+    from fastrock.studies.run import run_study
+    rec = load_default_record()
+    record = type(rec)(rec.acc[:500], rec.dt, name="El Centro, first 10 s")
+    body = fr.RigidBlock.rectangle(0.15, 0.6)
+    study = Study(records=[record], bodies=[body], levels=[0.2, 0.6], t_after=2.0,
+                  variants=[{"name": "level", "wall": None},
+                            {"name": "rock", "ground": {"slope": 0.05}},
+                            {"name": "slide", "ground": {"slope": 0.05}, "friction": {"mu_s": 0.3}}])
+    df = run_study(study, tmp_path / "out", progress=False)
+    scenes = {"level": {}, "rock": dict(ground=fr.Ground(0.05)),
+              "slide": dict(ground=fr.Ground(0.05), friction=fr.Friction(0.3))}
+    for _, row in df.iterrows():
+        motion = fr.SampledMotion.from_record(record, scale=row["scale"])
+        r = fr.simulate(body, motion, t_after=2.0, early_exit=True, **scenes[row["variant"]])
+        assert r.status == row["status"], row["variant"]
+        assert r.metrics["max_rotation_ratio"] == row["max_rotation_ratio"]
+    with pytest.raises(Exception, match="slope"):
+        Study(records=[record], bodies=[body], levels=[0.2],
+              variants=[{"ground": {"slope": 0.3}}]).prepare()

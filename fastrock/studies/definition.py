@@ -63,8 +63,9 @@ class Study:
         ``"foundation"`` (a foundation object, or a dict as a scene's
         ``[foundation]`` table, e.g. ``{"type": "two-spring", "omega": 40,
         "zeta": 0.05}``, built for each body), ``"mass"`` (block mass [kg]
-        with a foundation, default 1) and ``"name"`` (label; default from
-        the effects).
+        with a foundation, default 1), ``"ground"`` (a :class:`fastrock.Ground`
+        or a dict of its arguments, e.g. ``{"slope": 0.1}``: sloping ground)
+        and ``"name"`` (label; default from the effects).
     solver : Solver or dict, optional
         Integrator settings (default adaptive RK45, rtol 1e-8).
     t_after : float
@@ -288,6 +289,9 @@ class Study:
                 try:
                     friction, foundation, mass = _resolve_effects(body, effects[vi])
                     specs[bi, vi] = registry.select(body, wall, friction, foundation, mass)
+                    if effects[vi].get("ground") is not None:
+                        effects[vi]["ground"].check_scene(body, friction=friction, flexible=specs[bi, vi].flexible,
+                                                          foundation=foundation)
                 except (TypeError, ValueError) as exc:
                     raise StudyError(f"body {bi} with variant {names[vi]!r}: {exc}") from None
                 y0s[bi, vi] = (np.zeros(specs[bi, vi].n_state) if foundation is None else
@@ -433,6 +437,8 @@ def _variants(variants):
         if effects[-1].get("foundation") is not None:
             fnd = effects[-1]["foundation"]
             label += f", {fnd['type'] if isinstance(fnd, dict) else fnd.model} foundation"
+        if effects[-1].get("ground") is not None:
+            label += f", slope {effects[-1]['ground'].slope_deg:.3g} deg"
         names.append(str(v.get("name") or label))
     if len(set(names)) != len(names):
         raise StudyError(f"variant names must be distinct, got {names}")
@@ -440,7 +446,7 @@ def _variants(variants):
 
 
 #: Keys of a scene variant: its name and the effects it switches on.
-VARIANT_KEYS = {"name", "wall", "friction", "foundation", "mass"}
+VARIANT_KEYS = {"name", "wall", "friction", "foundation", "mass", "ground"}
 
 
 def _variant_effects(v):
@@ -451,6 +457,11 @@ def _variant_effects(v):
     if fr is not None:
         from fastrock.model.friction import Friction
         out["friction"] = Friction(**fr) if isinstance(fr, dict) else fr
+    if v.get("ground") is not None:
+        from fastrock.model.ground import Ground, as_ground
+        gnd = as_ground(Ground(**v["ground"]) if isinstance(v["ground"], dict) else v["ground"])
+        if gnd is not None:
+            out["ground"] = gnd
     if v.get("foundation") is not None:
         fnd = v["foundation"]
         if isinstance(fnd, dict):

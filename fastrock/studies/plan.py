@@ -9,6 +9,7 @@ from fastrock.running.outcomes import outcome_of, status_of
 from fastrock.constants import G_STANDARD
 from fastrock.analyses.rocking_spectrum.inputs import gap_of_wall
 from fastrock.kernels import layout as L
+from fastrock.model.ground import CLOSED_FORM_MODELS
 from fastrock.analyses.fragility import COLLAPSE_OUTCOMES
 from fastrock.studies.definition import StudyError
 from fastrock.studies.output import arrow_table
@@ -96,6 +97,14 @@ class Plan:
             scale = level.copy()
         self.scale = scale
         self.level = level
+        for (b, v), spec in prep.specs.items():       # the rocking model on a slope stays on the ground
+            gnd = prep.effects[v].get("ground")
+            rows = (B == b) & (W == v)
+            if gnd is not None and spec.name == "rigid" and rows.any():
+                try:
+                    gnd.check_lift_off(prep.bodies[b], float(np.max(np.abs(scale[rows]) * pga[R[rows]])))
+                except ValueError as exc:
+                    raise StudyError(f"body {b} with variant {prep.variant_names[v]!r}: {exc}") from None
         self.im = {"pga_g": scale * pga[R] / G_STANDARD, "pgv": scale * pgv[R],
                    "pga_over_g_tan_alpha": scale * pga[R] / uplift[B],
                    "omega_p_over_p": (2.0 * math.pi / tm[R]) / p[B]}
@@ -142,6 +151,12 @@ class Plan:
         HDR[:, L.X_OFFSET] = offsets[[local[k] for k in ri]]
         OPT = np.tile(prep.solver.options(0.0, prep.early_exit), (m, 1))
         OPT[:, L.O_T_END] = HDR[:, L.X_DUR] + prep.t_after
+        for j, i in enumerate(rows):
+            gnd = prep.effects[self.var[i]].get("ground")
+            if gnd is not None:
+                gnd.fill_header(HDR[j], prep.bodies[self.body[i]].g)
+                if spec0.name in CLOSED_FORM_MODELS:     # closed forms of level ground
+                    OPT[j, L.O_EARLY_EXIT] = 0.0
         return {"chunk": chunk.id, "module": spec0.module, "kernel": spec0.name,
                 "rows": rows.astype(np.int64),
                 "Y0": np.array([prep.y0s[self.body[i], self.var[i]] for i in rows], float).reshape(m, -1),
