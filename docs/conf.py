@@ -6,6 +6,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.abspath("_ext"))
+# document the source tree this folder belongs to (fastrock imports from the repository root)
+sys.path.insert(0, os.path.abspath(".."))
 
 import fastrock  # noqa: E402
 
