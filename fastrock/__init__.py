@@ -53,6 +53,7 @@ from fastrock.studies.definition import Study
 from fastrock.studies.run import run_study
 # fastrock.plotting registers the figure of SimulationResult.plot() on import
 from fastrock.plotting.fragility import plot_fragility
+from fastrock.plotting.snapshots import plot_snapshots
 
 del foundation_predictors
 
@@ -65,6 +66,6 @@ __all__ = [
     "Solver", "simulate", "SimulationResult", "simulate_foundation",
     # analyses and studies
     "overturning_spectrum", "rocking_spectrum", "half_cycles", "fit_free_rocking", "FreeRockingFit",
-    "Study", "run_study", "fit_fragility", "FragilityFit", "plot_fragility",
+    "Study", "run_study", "fit_fragility", "FragilityFit", "plot_fragility", "plot_snapshots",
 ]
 __version__ = VERSION

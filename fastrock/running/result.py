@@ -105,6 +105,8 @@ class SimulationResult:
         times of uplift / overturning [s], nfev, steps ...
     kernel : str
         Name of the compiled kernel that ran.
+    ground : Ground or None
+        The sloping ground of the run (None: level).
     """
 
     history: pd.DataFrame
@@ -118,6 +120,7 @@ class SimulationResult:
     excitation: object = None
     effects: tuple = field(default_factory=tuple)
     vertical: object = None
+    ground: object = None
 
     def ground_acceleration(self, t):
         """Horizontal and vertical ground acceleration [m/s^2] at times ``t`` [s], from the
