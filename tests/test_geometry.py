@@ -13,10 +13,7 @@ import numpy as np
 import pytest
 from scipy.spatial import ConvexHull
 
-try:
-    from fastrock.model import geometry as geo
-except ImportError:                      # before the front end's split into subpackages
-    from fastrock import geometry as geo
+from fastrock.model import geometry as geo
 
 
 def cross2(u, v):

@@ -364,3 +364,277 @@ def test_bounded_decision_checks_the_other_side():
     assert safe          # the symmetric rule with side s's alpha on both sides
     safe, pk1, pk2 = R.bounded_after_excitation_sides(theta, w, 1, alpha_s, p, 0.2, alpha_o, p, 0.2)
     assert safe and pk1 < 0 < pk2 and -pk1 < alpha_o
+
+
+# ============================================================ the front end: RigidBody
+import fastrock as fr  # noqa: E402
+from fastrock.model.rigid_body import RigidBody  # noqa: E402
+
+WEDGE = [(0.0, 0.0), (1.0, 0.0), (0.3, 2.0)]            # centre of mass left of the middle
+
+
+def body_geometry(body):
+    """The test's own Geometry of a RigidBody (from its pivots, mass and I_G only; g = G)."""
+    assert body.g == G
+    return Geometry(body.b1, body.h1, body.b2, body.h2, body.mass, body.inertia)
+
+
+def test_rigid_body_is_exported():
+    assert fr.RigidBody is RigidBody and "RigidBody" in fr.__all__
+
+
+@pytest.mark.parametrize("b,h", [(0.25, 1.0), (0.5, 0.6), (0.05, 2.0)])
+def test_general_impact_map_is_housners_e_for_the_rectangle(b, h):
+    """(I_G + m r_1 . r_2) / I_O with I_G = m (b^2 + h^2) / 3, r_1 . r_2 = h^2 - b^2: Housner's
+    e = 1 - 1.5 sin^2(alpha), both ways."""
+    m = 3.0
+    body = RigidBody(mass=m, inertia=m * (b * b + h * h) / 3, b1=b, h1=h, b2=b, h2=h)
+    alpha = math.atan2(b, h)
+    assert body.e12 == pytest.approx(1 - 1.5 * math.sin(alpha) ** 2, rel=1e-14)
+    assert body.e21 == body.e12
+    assert body.e12 == pytest.approx(fr.housner_restitution(alpha), rel=1e-14)
+    assert body.p1 == pytest.approx(math.sqrt(3 * body.g / (4 * math.hypot(b, h))), rel=1e-14)
+    # and the polygon constructor derives the same body
+    poly = RigidBody.from_polygon([(0, 0), (2 * b, 0), (2 * b, 2 * h), (0, 2 * h)], mass=m)
+    assert (poly.b1, poly.h1, poly.b2, poly.h2) == pytest.approx((b, h, b, h), rel=1e-13)
+    assert poly.inertia == pytest.approx(body.inertia, rel=1e-13)
+    assert poly.e12 == pytest.approx(body.e12, rel=1e-12) and poly.is_symmetric
+
+
+def test_general_impact_map_of_a_symmetric_body_is_from_inertia():
+    """Any symmetric body: RigidBlock.from_inertia's e = 1 - (m R^2 / I_0)(1 - cos 2 alpha)."""
+    m, IG, b, h = 2.0, 0.7, 0.3, 0.9
+    body = RigidBody(mass=m, inertia=IG, b1=b, h1=h, b2=b, h2=h)
+    R = math.hypot(b, h)
+    block = fr.RigidBlock.from_inertia(R, math.atan2(b, h), IG + m * R * R, m)
+    assert body.e12 == pytest.approx(block.e, rel=1e-14)
+    assert body.p1 == pytest.approx(block.p, rel=1e-14)
+
+
+def test_derived_quantities_per_side():
+    body = RigidBody.from_polygon(WEDGE, density=2500.0, thickness=0.4, g=G)
+    A = 1.0
+    cx, cy = 1.3 / 3, 2.0 / 3
+    assert body.mass == pytest.approx(2500 * 0.4 * A)
+    assert (body.b1, body.h1, body.b2, body.h2) == pytest.approx((cx, cy, 1 - cx, cy), rel=1e-14)
+    assert body.alpha1 == pytest.approx(math.atan2(cx, cy)) and body.alpha2 == pytest.approx(math.atan2(1 - cx, cy))
+    geo = body_geometry(body)
+    assert body.p1 == pytest.approx(geo.p[-1], rel=1e-14) and body.p2 == pytest.approx(geo.p[1], rel=1e-14)
+    assert body.e12 == pytest.approx(geo.e[-1], rel=1e-14) and body.e21 == pytest.approx(geo.e[1], rel=1e-14)
+    assert body.uplift_acceleration1 == pytest.approx(body.g * cx / cy)
+    assert body.uplift_acceleration2 == pytest.approx(body.g * (1 - cx) / cy)
+    assert body.alpha == body.alpha1 and body.p == body.p1 and body.smaller_side == 1
+    assert not body.is_symmetric
+    text = body.describe()
+    assert f"{body.alpha1:.6g}" in text and f"{body.alpha2:.6g}" in text and "asymmetric" in text
+    assert str(body) == text
+
+
+def test_plot_draws_outline_cm_and_pivots():
+    import matplotlib
+    matplotlib.use("Agg")
+    body = RigidBody.from_polygon(WEDGE, mass=1.0)
+    ax = body.plot()
+    xs = np.concatenate([ln.get_xdata() for ln in ax.lines])
+    ys = np.concatenate([ln.get_ydata() for ln in ax.lines])
+    for x, y in body.pivots:
+        assert np.any(np.isclose(xs, x) & np.isclose(ys, y))
+    assert np.any((xs == 0.0) & (ys == 0.0))          # the centre of mass
+    import matplotlib.pyplot as plt
+    plt.close(ax.figure)
+
+
+def test_mesh_body_equals_its_polygon(tmp_path):
+    """A box read as a mesh gives the rectangle of its section: mass, I_G about the axis, pivots."""
+    a, b, c = 0.6, 0.4, 1.8           # x, y (out of the shaking plane), z (up)
+    V = np.array([[x, y, z] for x in (0, a) for y in (0, b) for z in (0, c)]) + [3.0, 1.0, 0.0]
+    F = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1), (2, 3, 7), (2, 7, 6),
+         (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
+    path = tmp_path / "box.obj"
+    with open(path, "w") as f:
+        f.writelines("v %.17g %.17g %.17g\n" % tuple(v) for v in V)
+        f.writelines("f %d %d %d\n" % tuple(i + 1 for i in t) for t in F)
+    body = RigidBody.from_mesh(path, axis=(0, 1, 0), density=2000.0)
+    m = 2000.0 * a * b * c
+    assert body.mass == pytest.approx(m, rel=1e-13)
+    assert body.inertia == pytest.approx(m * (a * a + c * c) / 12, rel=1e-12)
+    assert (body.b1, body.h1, body.b2, body.h2) == pytest.approx((a / 2, c / 2, a / 2, c / 2), rel=1e-12)
+    assert body.is_symmetric
+    poly = RigidBody.from_polygon([(0, 0), (a, 0), (a, c), (0, c)], mass=m)
+    assert body.p1 == pytest.approx(poly.p1, rel=1e-12) and body.e12 == pytest.approx(poly.e12, rel=1e-12)
+
+
+# ------------------------------------------------------------ symmetric == RigidBlock, bit for bit
+SYMMETRIC = [RigidBody.from_block(fr.RigidBlock.rectangle(0.2, 1.0)),
+             RigidBody.from_block(fr.RigidBlock(alpha=0.3, p=2.2, e=0.8)),
+             RigidBody(mass=2.0, inertia=0.7, b1=0.3, h1=0.9, b2=0.3, h2=0.9)]
+
+
+def _block_of(body):
+    if body.source_block is not None:
+        return body.source_block
+    return fr.RigidBlock(alpha=body.alpha1, p=body.p1, e=body.e12, g=body.g, b=body.b1, h=body.h1)
+
+
+@pytest.mark.parametrize("k", range(len(SYMMETRIC)))
+def test_symmetric_body_simulate_is_the_block_bit_for_bit(k):
+    body = SYMMETRIC[k]
+    block = _block_of(body)
+    assert body.to_block() == block
+    pulse = fr.Pulse(amplitude=2.5, frequency=2.0)
+    for kw in ({}, {"early_exit": True}, {"theta0": 0.5 * block.alpha, "duration": 4.0}):
+        exc = None if "theta0" in kw else pulse
+        a = fr.simulate(body, exc, **kw)
+        b = fr.simulate(block, exc, **kw)
+        assert a.kernel == b.kernel == "rigid"
+        assert a.history.equals(b.history) and a.events.equals(b.events)
+        assert list(a.metrics) == list(b.metrics) and a.status == b.status
+        assert np.array_equal(np.array(list(a.metrics.values()), float),
+                              np.array(list(b.metrics.values()), float), equal_nan=True)
+
+
+@pytest.mark.parametrize("k", range(len(SYMMETRIC)))
+def test_symmetric_body_spectrum_is_the_block_bit_for_bit(k):
+    body = SYMMETRIC[k]
+    block = _block_of(body)
+    grid = (np.linspace(0.6, 4.0, 6), np.linspace(0.5, 8.0, 6))
+    a = fr.overturning_spectrum(body, *grid, sign="both", progress=False)
+    b = fr.overturning_spectrum(block, *grid, sign="both", progress=False)
+    assert a.equals(b) and a.attrs == b.attrs
+    assert set(a["outcome"]) >= {"safe", "mode1", "mode2"} or k == 2
+
+
+def test_symmetric_body_runs_with_every_effect():
+    body = SYMMETRIC[0]
+    pulse = fr.Pulse(amplitude=2.0, frequency=2.0)
+    for kw in ({"wall": fr.Wall(gap=0.02)}, {"friction": fr.Friction(0.3)},
+               {"foundation": fr.LinearVibration(1e5), "mass": 100.0}):
+        a = fr.simulate(body, pulse, **kw)
+        b = fr.simulate(body.to_block(), pulse, **kw)
+        assert a.kernel == b.kernel and a.history.equals(b.history)
+
+
+# ------------------------------------------------------------ asymmetric through the front end
+def test_asymmetric_simulate_against_scipy_events():
+    """simulate() builds the per-side parameters right: a wedge's run against the independent
+    solver written from its pivots (which side is which, which restitution for which impact)."""
+    body = RigidBody.from_polygon(WEDGE, mass=10.0, g=G)
+    geo = body_geometry(body)
+    for sign, ratio, wp in ((1, 1.5, 3.0), (-1, 1.5, 3.0), (-1, 3.0, 1.2)):
+        s = -sign
+        amp = ratio * G * math.tan(geo.alpha[s])
+        omega = wp * geo.p[s]
+        res = fr.simulate(body, fr.Pulse(amplitude=amp, frequency=omega, sign=sign, amplitude_unit="m/s2",
+                                          frequency_unit="rad/s"), rtol=1e-11, t_after=4.0)
+        ref = reference(geo, one_sine(amp, omega, sign), 2 * math.pi / omega + 4.0, n_impacts=10)
+        imp = res.events[res.events["event"] == "impact"]["t"].to_numpy()
+        n = min(len(imp), len(ref["impacts"]))
+        assert n == len(ref["impacts"]) or n == 10
+        assert np.allclose(imp[:n], ref["impacts"][:n], rtol=0, atol=1e-8)
+        if np.isnan(ref["t_over"]):
+            assert res.outcome == "safe"
+        else:
+            assert res.outcome in ("mode1", "mode2")
+            assert res.metrics["time_overturn"] == pytest.approx(ref["t_over"], abs=1e-8)
+            assert np.sign(res.history["theta"].iloc[-1]) == ref["side"]
+
+
+def test_asymmetric_spectrum_side_column_and_mirror():
+    """Mirroring the body (x -> -x) and the pulse sign mirrors every run: the same outcomes, the
+    side column negated; overturned rows have side = sign(theta_end), the others 0."""
+    body = RigidBody.from_polygon(WEDGE, mass=1.0)
+    mirror = RigidBody.from_polygon([(-x, y) for x, y in WEDGE], mass=1.0)
+    assert mirror.alpha2 == pytest.approx(body.alpha1, rel=1e-14)
+    grid = (np.linspace(0.6, 4.0, 7), np.linspace(0.5, 8.0, 7))
+    a = fr.overturning_spectrum(body, *grid, sign=[1, -1], progress=False)
+    # the same physical pulses: both bodies' ratios refer to their smaller side, the same alpha and p
+    b = fr.overturning_spectrum(mirror, *grid, sign=[-1, 1], progress=False)
+    assert a.attrs["kernel"] == "rigid_body" and a.attrs["ratio_side"] == 1 and b.attrs["ratio_side"] == 2
+    assert a.attrs["alpha1"] == body.alpha1 and a.attrs["alpha2"] == body.alpha2
+    assert a.attrs["p1"] == body.p1 and a.attrs["p2"] == body.p2
+    assert np.allclose(a["amplitude"], b["amplitude"], rtol=1e-12)
+    assert list(a["outcome"]) == list(b["outcome"])
+    assert (a["side"] == -b["side"]).all()
+    over = a["outcome"].isin(["mode1", "mode2"])
+    assert over.any() and (~over).any()
+    assert (a.loc[over, "side"] == np.sign(a.loc[over, "theta_end"])).all()
+    assert (a.loc[~over, "side"] == 0).all()
+    assert set(a.loc[over, "side"]) == {1, -1}       # this wedge falls both ways over the grid
+    assert np.allclose(a["max_rotation"], b["max_rotation"], rtol=1e-9)
+
+
+def test_side_column_on_a_block_spectrum():
+    block = fr.RigidBlock.rectangle(0.2, 1.0)
+    df = fr.overturning_spectrum(block, [3.0], [1.0, 2.0], sign="both", progress=False)
+    over = df["outcome"].isin(["mode1", "mode2"])
+    assert (df["side"] == np.where(over, np.sign(df["theta_end"]), 0)).all()
+    assert set(df["side"]) <= {-1, 0, 1}
+
+
+def test_asymmetric_early_exit_matches_full_spectrum():
+    body = RigidBody.from_polygon(WEDGE, mass=1.0)
+    grid = (np.linspace(0.6, 4.0, 6), np.linspace(0.5, 8.0, 6))
+    fast = fr.overturning_spectrum(body, *grid, sign="both", progress=False, rtol=1e-10)
+    full = fr.overturning_spectrum(body, *grid, sign="both", progress=False, rtol=1e-10, early_exit=False)
+    assert list(fast["outcome"]) == list(full["outcome"]) and (fast["side"] == full["side"]).all()
+    assert "safe:bounded" in set(fast["status"])
+    assert np.allclose(fast["max_rotation"], full["max_rotation"], rtol=0, atol=1e-7)
+
+
+# ------------------------------------------------------------ bad input
+@pytest.mark.parametrize("kw,match", [
+    ({"wall": fr.Wall(gap=0.02)}, "only so far: wall="),
+    ({"friction": fr.Friction(0.4)}, "only so far: friction="),
+    ({"friction": fr.Friction(math.inf, lift_off="flight")}, "only so far: friction=Friction"),
+    ({"foundation": fr.LinearVibration(1e5), "mass": 10.0}, "only so far: foundation="),
+])
+def test_asymmetric_body_refuses_other_models(kw, match):
+    body = RigidBody.from_polygon(WEDGE, mass=1.0)
+    with pytest.raises(ValueError, match="^asymmetric bodies run in the two-sided rocking model " + match):
+        fr.simulate(body, fr.Pulse(amplitude=2.0, frequency=2.0), **kw)
+    with pytest.raises(ValueError, match="^asymmetric bodies run in the two-sided rocking model " + match):
+        fr.overturning_spectrum(body, [1.0], [1.0], progress=False, **kw)
+
+
+def test_flexible_body_unaffected_by_the_routing():
+    flex = fr.FlexibleBody(alpha=0.2, p=2.0, omega_n_over_p=10.0)
+    assert fr.simulate(flex, fr.Pulse(amplitude=2.0, frequency=2.0)).kernel == "flexible"
+
+
+@pytest.mark.parametrize("make,match", [
+    (lambda: RigidBody(mass=1.0, inertia=1.0, b1=-0.1, h1=1.0, b2=0.5, h2=1.0), "^b1 must be > 0.*cannot stand"),
+    (lambda: RigidBody(mass=1.0, inertia=1.0, b1=0.3, h1=1.0, b2=0.0, h2=1.0), "^b2 must be > 0"),
+    (lambda: RigidBody(mass=0.0, inertia=1.0, b1=0.3, h1=1.0, b2=0.3, h2=1.0), "^mass"),
+    (lambda: RigidBody(mass=1.0, inertia=1.0, b1=0.3, h1=1.0, b2=0.3, h2=1.0, theta_over=0.2), "^theta_over"),
+    (lambda: RigidBody(mass=1.0, inertia=0.01, b1=2.0, h1=0.3, b2=2.0, h2=0.3), "negative restitution"),
+    (lambda: RigidBody(mass=1.0, inertia=0.1, b1=0.2, h1=1.0, b2=0.6, h2=1.0, e=0.99), "^e = 0.99 would add energy"),
+    (lambda: RigidBody(mass=1.0, inertia=0.1, b1=0.2, h1=1.0, b2=0.3, h2=1.0, top="pointed"), "^top"),
+    (lambda: RigidBody.from_polygon([(0, 0), (1, 1), (1, 0), (0, 1)], mass=1.0), "^vertices: the polygon crosses"),
+    (lambda: RigidBody.from_polygon([(0, 0), (0.2, 0), (0.2, 1), (3, 1), (3, 1.5), (0, 1.5)], mass=1.0),
+     "^pose: the body cannot stand"),
+    (lambda: RigidBody.from_polygon(WEDGE), "^give either mass"),
+    (lambda: RigidBody.from_polygon(WEDGE, density=2000.0), "^thickness"),
+    (lambda: RigidBody.from_polygon(WEDGE, mass=1.0, density=2000.0), "^give either mass"),
+])
+def test_bad_rigid_body_input_named(make, match):
+    with pytest.raises(ValueError, match=match):
+        make()
+
+
+def test_bad_mesh_input_named(tmp_path):
+    V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    path = tmp_path / "open.obj"
+    with open(path, "w") as f:
+        f.writelines("v %g %g %g\n" % tuple(v) for v in V)
+        f.writelines("f %d %d %d\n" % t for t in [(1, 3, 2), (1, 2, 4), (2, 3, 4)])
+    with pytest.raises(ValueError, match="^path: .*not closed"):
+        RigidBody.from_mesh(path, density=1.0)
+    with pytest.raises(ValueError, match="^axis must be a unit vector"):
+        RigidBody.from_mesh(path, axis=(0, 0.5, 0), density=1.0)
+
+
+def test_docstring_examples_run():
+    import doctest
+    import fastrock.model.rigid_body as mod
+    res = doctest.testmod(mod, optionflags=doctest.ELLIPSIS)
+    assert res.attempted >= 4 and res.failed == 0

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _validate as V
+from fastrock import _validate as V
 
 
 # ------------------------------------------------------------------ polygons

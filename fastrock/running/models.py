@@ -24,6 +24,24 @@ def rigid_par(body: RigidBlock):
     return par
 
 
+def rigid_body_par(body):
+    """Parameters of an asymmetric RigidBody (kernels/rigid.py, the rigid_body entries): the rigid
+    entries hold side 2 (the right pivot, theta > 0, pivot +1) and the impact leaving it, the
+    P_*_NEG entries side 1 (pivot -1)."""
+    from fastrock.kernels import layout as K
+    par = np.zeros(K.N_PAR_RIGID_BODY)
+    par[K.P_ALPHA] = body.alpha2
+    par[K.P_P] = body.p2
+    par[K.P_E] = body.e21
+    par[K.P_G] = body.g
+    par[K.P_THETA_OVER] = body.theta_over
+    par[K.P_ALPHA_NEG] = body.alpha1
+    par[K.P_P_NEG] = body.p1
+    par[K.P_E_NEG] = body.e12
+    par[K.P_IO_RATIO] = body.inertia_about_pivot1 / body.inertia_about_pivot2
+    return par
+
+
 def flexible_par(body: FlexibleBody, sliding=False, n_par=None):
     from fastrock.kernels import layout as K
     par = np.zeros(n_par or K.N_PAR_FLEXIBLE)

@@ -63,7 +63,7 @@ class Model:
 
     name: str
     module: str
-    body: str                       # "rigid" or "flexible"
+    body: str                       # "rigid", "flexible" or "rigid_body" (an asymmetric RigidBody)
     effects: frozenset
     state_names: tuple
     build_par: Callable = field(repr=False, compare=False)
@@ -171,12 +171,29 @@ def register(model: Model):
 
 def _body_kind(body):
     from fastrock.model.bodies import FlexibleBody, RigidBlock
+    from fastrock.model.rigid_body import RigidBody
     if isinstance(body, FlexibleBody):
         return "flexible"
     if isinstance(body, RigidBlock):
         return "rigid"
-    raise ValueError(f"body must be a fastrock body (RigidBlock, FlexibleBody), got "
+    if isinstance(body, RigidBody):
+        return "rigid" if body.is_symmetric else "rigid_body"
+    raise ValueError(f"body must be a fastrock body (RigidBlock, RigidBody, FlexibleBody), got "
                      f"{type(body).__name__}")
+
+
+def model_body(body):
+    """The body the models run: a symmetric :class:`~fastrock.RigidBody` is its
+    :class:`~fastrock.RigidBlock` (``RigidBody.to_block``); any other body as it is."""
+    from fastrock.model.rigid_body import RigidBody
+    if isinstance(body, RigidBody) and body.is_symmetric:
+        return body.to_block()
+    return body
+
+
+#: How the error for an asymmetric body names each effect.
+_EFFECT_FIELDS = {"wall": "wall=", "friction": "friction=", "flight": "friction=Friction(lift_off='flight')",
+                  "foundation": "foundation="}
 
 
 def scene_effects(wall=None, friction=None, foundation=None):
@@ -217,6 +234,11 @@ def lookup(body, effects):
     model = _BY_SCENE.get((kind, effect_names(effects)))
     if model is None:
         generic = frozenset(effects)
+        if kind == "rigid_body":
+            raise ValueError("asymmetric bodies run in the two-sided rocking model only so far: "
+                             f"{', '.join(_EFFECT_FIELDS[k] for k in sorted(generic))} is not available for a "
+                             "RigidBody whose sides differ (b1 != b2 or h1 != h2); a symmetric RigidBody runs "
+                             "everywhere as its RigidBlock")
         if "foundation" in generic and kind != "rigid":
             raise ValueError("foundation= is available for RigidBlock only (the flexible "
                              "foundation models carry a rigid block)")
@@ -231,13 +253,18 @@ def select(body, wall=None, friction=None, foundation=None, mass=1.0):
     """KernelSpec of the smallest model that runs this scene."""
     effects = scene_effects(wall, friction, foundation)
     model = lookup(body, effects)
-    return KernelSpec(model, model.build_par(body, effects, mass))
+    return KernelSpec(model, model.build_par(model_body(body), effects, mass))
 
 
 # ------------------------------------------------------------------ entries
 def _rigid(body, fx, mass):
     from fastrock.running.models import rigid_par
     return rigid_par(body)
+
+
+def _rigid_body(body, fx, mass):
+    from fastrock.running.models import rigid_body_par
+    return rigid_body_par(body)
 
 
 def _rigid_wall(body, fx, mass):
@@ -299,6 +326,11 @@ register(Model(
     outcomes=("safe", "mode1", "mode2", "flight", "failed"),
     cli_options=_RIGID_CLI, toml_keys=_RIGID_TOML,
     summary="Housner's rigid block rocking on rigid ground (two-sided)"))
+register(Model(
+    "rigid_body", "rigid", "rigid_body", frozenset(), ("theta", "theta_dot"), _rigid_body,
+    outcomes=("safe", "mode1", "mode2", "flight", "failed"),
+    summary="asymmetric rigid body (RigidBody: each pivot its own alpha, p and impact restitution) "
+            "rocking on rigid ground (two-sided)"))
 register(Model(
     "rigid_wall", "wall", "rigid", frozenset({"wall"}), ("theta", "theta_dot"), _rigid_wall,
     columns=("toward_wall", "max_rotation_toward_wall", "max_rotation_away_from_wall"),
