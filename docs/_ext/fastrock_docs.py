@@ -84,7 +84,6 @@ def find_parser():
 
 # ---------------------------------------------------------------- parsing the column texts
 _UNIT = re.compile(r"\s*(\[[^\]]*\])\s*$")
-_NAMES_UNITS = re.compile(r"\s*(\[[^\]]*\])")
 
 
 def parse_columns(text):
@@ -103,6 +102,10 @@ def parse_columns(text):
             continue
         parts = re.split(r"\s{2,}", line.strip(), maxsplit=1)
         names, meaning = parts[0], (parts[1] if len(parts) > 1 else "")
+        # a long name followed by a single space: "slenderness_first_stable smallest ..."
+        m = re.match(r"([A-Za-z_]\w*) (?![\[,])(.*)", names)
+        if m and not re.match(r"[A-Za-z_]\w*,", names):
+            names, meaning = m.group(1), (m.group(2) + "  " + meaning).strip()
         if rows and rows[-1][0].endswith(",") and not rows[-1][1]:
             rows[-1][0] = rows[-1][0] + " " + names
             rows[-1][1] = meaning
@@ -114,12 +117,6 @@ def parse_columns(text):
         m = _UNIT.search(meaning)
         if m:
             unit, meaning = m.group(1), meaning[:m.start()]
-        elif not meaning:
-            # units written after each name: "time_uplift [s], time_end [s]"
-            units = _NAMES_UNITS.findall(names)
-            if units:
-                unit = ", ".join(u for u in units)
-                names = _NAMES_UNITS.sub("", names)
         out.append((names.strip(), meaning.strip(), unit.strip("[] ")))
     return out
 
@@ -167,12 +164,17 @@ def _cell(content):
 
 
 def _names_cell(names):
+    """Column names as code; what follows a name in the text (its unit written after it,
+    "time_end [s]", or a symbol, "mean_period Tm [s]") stays beside it as plain text."""
     parts = [n.strip() for n in names.split(",") if n.strip()]
     out = []
     for i, n in enumerate(parts):
         if i:
             out.append(nodes.Text(", "))
-        out.append(nodes.literal(text=n))
+        name, _, rest = n.partition(" ")
+        out.append(nodes.literal(text=name))
+        if rest:
+            out.append(nodes.Text(" " + rest))
     return out
 
 
