@@ -1,4 +1,4 @@
-"""Bodies: rigid blocks (physics.md section 1)."""
+"""Bodies: rigid blocks (docs: theory/rigid)."""
 from __future__ import annotations
 
 import math
@@ -143,7 +143,7 @@ DEFAULT_BASE_MASS_RATIO = 0.1
 
 @dataclass(frozen=True)
 class FlexibleBody:
-    """Lumped mass on an elastic column on a rigid rocking base (physics.md 3).
+    """Lumped mass on an elastic column on a rigid rocking base (docs: theory/flexible).
 
     The parameters are the literature's dimensionless groups.
 
@@ -171,7 +171,7 @@ class FlexibleBody:
     mass : float
         m [kg], only scales forces in the time history (default 1).
     base_mass_ratio : float, optional
-        m_b / m, a rigid base block under the column (physics.md 3.1, 4.4),
+        m_b / m, a rigid base block under the column (docs: theory/flexible_friction),
         with inertia I_b = m_b B^2 / 3 about its own centre of mass.  Default
         (None): 0 (the classic massless base) without sliding, and
         ``DEFAULT_BASE_MASS_RATIO`` = 0.1 with friction, where a base mass is
@@ -278,7 +278,7 @@ class FlexibleBody:
         """The rigid block of the same alpha and p, with the restitution the
         impact map tends to as omega_n/p -> infinity: cos^2(alpha) for the
         full-contact map, cos(2 alpha) (times e) for the pivot switch (point
-        mass; physics.md 3.5).  Its outline is the body's, b = B and h = H
+        mass; docs: theory/flexible, impact maps).  Its outline is the body's, b = B and h = H
         (where a wall touches it)."""
         if self.impact == "full-contact":
             e = math.cos(self.alpha) ** 2

@@ -35,7 +35,7 @@ class Pulse:
     pi/omega_p, one-cosine 2 pi/omega_p, rectangular ``duration`` seconds.
 
     A positive sign accelerates the ground toward +x, which tips the block
-    toward negative theta (physics.md section 0).
+    toward negative theta (docs: theory, conventions).
     """
 
     amplitude: float

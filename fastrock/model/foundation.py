@@ -1,12 +1,12 @@
-"""Rocking against vibration: a rigid block on a flexible foundation (physics.md §5).
+"""Rocking against vibration: a rigid block on a flexible foundation (docs: theory/foundation).
 
 Three foundation models, each a scene effect passed to :func:`simulate_foundation`:
 
 * :class:`TwoSpringFoundation` ``(k_v, c_v)`` -- tensionless vertical spring-dashpots at the two
-  bottom corners (physics.md §5.1, the reference model). Lift-off and re-contact happen
+  bottom corners (docs: theory/foundation, the reference model). Lift-off and re-contact happen
   smoothly (soft contact, no impact map); dissipation comes from ``c_v`` only.
 * :class:`SwitchingFoundation` ``(k_t, c_t, e_f)`` -- the switching SDOF model used by Yu,
-  Gutschmidt & MacRae (physics.md §5.2, with the P-Delta term kept): linear rotational spring
+  Gutschmidt & MacRae (docs: theory/foundation, with the P-Delta term kept): linear rotational spring
   while in contact, Housner rocking once ``|k_t theta + c_t theta'| >= M G b``, back to contact
   at ``|theta| <= theta_y = M g b / k_t``, optional restitution ``e_f`` at re-contact.
 * :class:`LinearVibration` ``(k_t, c_t)`` -- a linear SDOF ``I_C theta'' + c_t theta' + k_t theta
@@ -109,7 +109,7 @@ def _vibration_of(blk, k_t, c_t, p_delta):
 
 @dataclass(frozen=True)
 class TwoSpringFoundation:
-    """Tensionless spring-dashpots at the two bottom corners (physics.md §5.1).
+    """Tensionless spring-dashpots at the two bottom corners (docs: theory/foundation).
 
     Parameters
     ----------
@@ -172,7 +172,7 @@ class TwoSpringFoundation:
 
 @dataclass(frozen=True)
 class SwitchingFoundation:
-    """Switching SDOF foundation (physics.md §5.2, Yu et al.'s model with P-Delta kept).
+    """Switching SDOF foundation (docs: theory/foundation; Yu et al.'s model with P-Delta kept).
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""Coulomb friction at the base (physics.md section 4)."""
+"""Coulomb friction at the base (docs: theory/friction, theory/flexible_friction)."""
 from __future__ import annotations
 
 import math

@@ -1,4 +1,4 @@
-"""A rigid rear wall beside the block: one-sided rocking (physics.md section 2).
+"""A rigid rear wall beside the block: one-sided rocking (docs: theory/wall).
 
 References: Hogan (1992), *Proc. R. Soc. A* 439, 35-45 (d = 0);
 Mennitti, Maiorano & Aversa (2021), one-sided rocking of rigid blocks next to
@@ -25,7 +25,7 @@ class Wall:
     side : {-1, +1}
         Side of the wall.  ``-1`` (default) puts it on the negative-theta
         side: a positive ground acceleration (which tips the block toward
-        -theta, physics.md 0) throws the block toward the wall.
+        -theta; docs: theory, conventions) throws the block toward the wall.
     height : float, optional
         Wall height h_w [m], > 0.  None (default): taller than the block.
     restitution : float

@@ -35,7 +35,7 @@ class Solver:
         Treat every record sample as a breakpoint (no step straddles a kink of
         the interpolated record).
     eps_omega, eps_t : float
-        Chatter-to-rest thresholds [rad/s, s] (physics.md 7).
+        Chatter-to-rest thresholds [rad/s, s] (docs: theory/numerics).
     """
 
     rtol: float = DEFAULT_RTOL

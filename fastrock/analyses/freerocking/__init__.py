@@ -10,13 +10,13 @@ This module is the "rocking against vibration" toolbox (Yu, Gutschmidt & MacRae)
 * the reading of a body-mounted accelerometer (:func:`accelerometer`);
 * least-squares identification of the frequency parameter ``p`` and the restitution ``e``
   from measured half-cycle durations (:func:`fit_free_rocking`, :func:`fit_from_csv`), with a
-  pluggable ``predictor`` so that foundation models (two-spring, switching; physics.md §5) can
+  pluggable ``predictor`` so that foundation models (two-spring, switching; docs: theory/foundation) can
   be fitted with the same machinery later;
 * the measured half-cycle durations of Yu et al. (:func:`load_yu2019`);
 * plot helpers and the ``fastrock fit`` sub-command (:func:`add_fit_subcommand`,
   :func:`run_fit_command`).
 
-Conventions follow ``physics.md`` §0–§1: SI units, angles in radians unless a name ends in
+Conventions follow the docs (theory, conventions): SI units, angles in radians unless a name ends in
 ``_deg``, ``theta > 0`` = tilted to the right, pivot sign ``s = +1`` right corner, ``-1`` left.
 ``alpha`` is the slenderness angle, ``p = sqrt(M g R / I_0)`` [rad/s] the frequency parameter
 and ``e`` Housner's (angular-velocity) coefficient of restitution, ``theta'+ = e theta'-``.

@@ -17,8 +17,8 @@ def accelerometer(t, theta, dtheta, ddtheta, point, a_g=None, g=G_STANDARD, *,
 
     The sensor is at body coordinates ``point = (x_p, y_p)`` measured from the centre of the
     base: body ``x`` along the base (toward the right corner when upright), body ``y`` along
-    the body axis, upward. The body rotates rigidly by ``theta`` (clockwise positive, physics.md
-    §0) about its active pivot, the bottom corner ``(s * half_width, 0)`` (``s = pivot_sign``;
+    the body axis, upward. The body rotates rigidly by ``theta`` (clockwise positive, docs:
+    theory, conventions) about its active pivot, the bottom corner ``(s * half_width, 0)`` (``s = pivot_sign``;
     ``s = 0`` means rotation about the base centre, e.g. the contact phase of the switching
     model). With ``rho = (x_p - s b, y_p)`` the pivot-to-sensor vector in the body frame
     (``b = half_width``) the specific force ``f = a - g_vec`` (what an accelerometer measures;

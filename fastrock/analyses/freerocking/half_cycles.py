@@ -103,15 +103,15 @@ def half_cycles(t, theta, lift_off=None, definition="impact", *, theta_y=None,
     t : array_like, shape (N,)
         Strictly increasing times [s].
     theta : array_like, shape (N,)
-        Rotation [rad] (sign convention of physics.md §0).
+        Rotation [rad] (sign convention of the docs: theory, conventions).
     lift_off : array_like of bool, shape (N,), optional
         True where the body is lifted off (rocking on a corner). When given, a half-cycle is
         ``"rocking"`` iff any sample in ``[t_start, t_end]`` is lifted off.
     definition : {"impact", "peak"}
         See above.
     theta_y : float, optional
-        Static uplift rotation [rad] (e.g. ``M g b / k_t`` of the switching model, physics.md
-        §5.2). Used when ``lift_off`` is not given: a half-cycle is ``"rocking"`` iff the largest
+        Static uplift rotation [rad] (e.g. ``M g b / k_t`` of the switching model, docs:
+        theory/foundation). Used when ``lift_off`` is not given: a half-cycle is ``"rocking"`` iff the largest
         ``|theta|`` it reaches exceeds ``theta_y`` (for "peak" the larger of its two extremes).
     t_switch : float, optional
         Duration threshold [s], used when neither ``lift_off`` nor ``theta_y`` is given:

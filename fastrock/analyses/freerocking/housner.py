@@ -16,7 +16,7 @@ HALF_CYCLE_DEFINITIONS = ("impact", "peak")
 # Housner free rocking with impacts
 # ----------------------------------------------------------------------------------------
 def _next_amplitudes(theta: np.ndarray, alpha: float, e: float) -> np.ndarray:
-    """Amplitude after one impact from the exact energy relation (physics.md §6.3)."""
+    """Amplitude after one impact from the exact energy relation (docs: theory/closed_forms)."""
     # D = cos(alpha - theta) - cos(alpha) = 2 sin(alpha - theta/2) sin(theta/2)
     D = e * e * 2.0 * np.sin(alpha - 0.5 * theta) * np.sin(0.5 * theta)
     c = np.minimum(np.cos(alpha) + D, 1.0)
@@ -36,7 +36,7 @@ def housner_amplitudes(theta0, alpha, e, n):
     """Successive rocking amplitudes of a freely rocking rigid block.
 
     ``cos(alpha - theta_{k+1}) - cos(alpha) = e^2 [cos(alpha - theta_k) - cos(alpha)]``
-    (exact energy balance, physics.md §6.3), starting at ``theta_0 = theta0``.
+    (exact energy balance, docs: theory/closed_forms), starting at ``theta_0 = theta0``.
 
     Parameters
     ----------

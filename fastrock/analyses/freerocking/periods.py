@@ -28,7 +28,7 @@ def _acosh1p(w):
 def rocking_period_linear(theta0, alpha, p):
     """Full free-rocking period of the linearised rigid block (Housner; Yu et al.'s ``T_C``).
 
-    ``T = (4/p) acosh(1 / (1 - theta0/alpha))`` (physics.md §6.1): four times the time the
+    ``T = (4/p) acosh(1 / (1 - theta0/alpha))`` (docs: theory/closed_forms): four times the time the
     linearised block ``theta'' = p^2 (theta - alpha)`` released from rest at ``theta0`` needs to
     reach ``theta = 0``. Impacts are ignored (``e = 1``).
 
@@ -119,11 +119,11 @@ def rocking_period_exact(theta0, alpha, p):
     """Full free-rocking period of the exact (nonlinear) rigid block, without impact losses.
 
     ``T = 4 int_0^theta0 dtheta / (p sqrt(2[cos(alpha - theta0) - cos(alpha - theta)]))``
-    (physics.md §6.2). The integrable endpoint singularity is removed exactly by the change of
+    (docs: theory/closed_forms). The integrable endpoint singularity is removed exactly by the change of
     variables ``sin((alpha-theta)/2) = sin((alpha-theta0)/2) cosh(u)`` and the remaining smooth
     integral is evaluated by composite Gauss-Legendre quadrature
     (:func:`numpy.polynomial.legendre.leggauss`, 24 nodes per unit panel in ``u``); relative
-    accuracy ~1e-13 for ``1e-8 < theta0/alpha < 1 - 1e-8``. Check value (physics.md §6):
+    accuracy ~1e-13 for ``1e-8 < theta0/alpha < 1 - 1e-8``. Check value (docs: theory/closed_forms):
     ``p = 2, alpha = 0.25, theta0 = 0.15`` gives a quarter period of 0.7844874371 s.
 
     Parameters
