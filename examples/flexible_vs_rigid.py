@@ -6,7 +6,7 @@ One-sine pulses, alpha = 0.3, p = 2 rad/s, grid a_p/(g tan alpha) = 1..6 x omega
 (80 x 80 by default).  Four panels in the same axes:
 
 * (a) the rigid block with e = cos^2(alpha) (what the full-contact map I3 tends to as
-  omega_n/p -> infinity, physics.md 3.5), with the safe/overturn boundaries of the three flexible
+  omega_n/p -> infinity; docs: theory/flexible), with the safe/overturn boundaries of the three flexible
   bodies drawn over it;
 * (b)-(d) flexible bodies, zeta = 0.05, omega_n/p = 3, 9 and 30, full-contact map (I3), each with
   the rigid boundary drawn over it (black line).

@@ -3,7 +3,7 @@
 =============================================================================================
 
 Body: alpha = 0.3, omega_n/p = 9, zeta = 0.05, full-contact impact map, rigid base block
-m_b = 0.1 m (needed for a well-posed sliding problem, physics.md 4.4; used for every mu, the
+m_b = 0.1 m (needed for a well-posed sliding problem, docs: theory/flexible_friction; used for every mu, the
 no-sliding reference included), p = 2 rad/s (overturning does not depend on p; the slip d
 scales with R0 = g/p^2 = 2.45 m, and with it the slide/safe split, whose 1 mm residual tolerance
 is absolute).  One-sine pulses of sign +1,
@@ -20,7 +20,7 @@ pivot while the body rocks.  Three rules, each a map per mu:
 * ``lift_off="hold"``: the pivot is held on the ground, as the classic model (mu = inf, no
   sliding degree of freedom) implicitly does, and the base slips without friction while N < 0.
   Its reference is the classic model.
-* ``lift_off="stop"`` (physics.md 4.6) ends a run with outcome "flight" where N first reaches 0.
+* ``lift_off="stop"`` (docs: theory/flexible_friction, lift-off) ends a run with outcome "flight" where N first reaches 0.
 
 Writes to OUT (default ``docs/``); the maps (a)-(d) use DEFAULT_LIFT_OFF:
 

@@ -16,7 +16,7 @@ Models and parameters:
 
 * Housner rigid block, published parameters: p and e above, simulated with
   ``fastrock.simulate(theta0=...)``.
-* Two-spring foundation (physics.md §5.1), "published" = the published block plus corner
+* Two-spring foundation (docs: theory/foundation), "published" = the published block plus corner
   springs chosen from the data, not fitted: k_v makes the small-amplitude vibration
   half-cycle pi/omega equal to the mean measured duration of half-cycles 18-20 (the
   vibration tail, ~0.079 s), i.e. T_L = 2 pi/omega ~ 0.16 s (twice the late half-cycle,
@@ -26,9 +26,9 @@ Models and parameters:
   impossible: even c_v = 0, which conserves energy, gives a first peak ratio of 0.914 at
   10 deg -- the landing corner bounces and feeds the vertical mode -- and lower ones later;
   the rigid block with Housner's e = 0.939 gives 0.80.)
-* Switching SDOF (physics.md §5.2, Yu et al.'s model with P-Delta), "published" = the
+* Switching SDOF (docs: theory/foundation; Yu et al.'s model with P-Delta), "published" = the
   published block, the same omega, zeta = 0 and e_f = 0.92 (the measured displacement
-  restitution, physics.md §5.2).
+  restitution, docs: theory/foundation).
 * Fits of all 60 durations with shared parameters: Housner (p, e), two-spring (p, k_v,
   c_v) and switching (p, e_f; omega fixed as above, zeta = 0 -- with omega free the fit
   runs off to an infinitely stiff contact phase, i.e. to Housner rocking with e = e_f,
