@@ -124,7 +124,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         gravity G = g + a_v); each run lasts until both excitations end,
         plus ``t_after``.
     early_exit : bool
-        Stop a run once its outcome is decided (exact; see README).
+        Stop a run once its outcome is decided (exact; docs: guide/outcomes).
     progress : bool
         Progress bar on stderr for long sweeps.  Ctrl-C returns the finished
         rows (``df.attrs["interrupted"]`` is True).
@@ -137,6 +137,14 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     Returns
     -------
     DataFrame, one row per run; columns in ``SPECTRUM_COLUMNS``.
+
+    Examples
+    --------
+    >>> from fastrock import RigidBlock, overturning_spectrum
+    >>> block = RigidBlock.rectangle(b=0.2, h=0.8)
+    >>> df = overturning_spectrum(block, [1.0, 3.0, 6.0], [1.0, 4.0], progress=False)
+    >>> list(df.outcome)        # a_p/(g tan alpha) 1, 3, 6 at omega_p/p = 1, then at 4
+    ['safe', 'mode2', 'mode2', 'safe', 'mode1', 'mode2']
     """
     body = registry.model_body(body)
     solver = make_solver(solver, rtol, atol, dt)

@@ -14,6 +14,12 @@ def housner_restitution(alpha, mass_ratio=1.5):
 
     ``mass_ratio`` = 1.5 corresponds to M R^2/I0 = 3/4 (rectangle), giving
     e = 1 - 1.5 sin^2(alpha).  The energy ratio per impact is e^2.
+
+    Examples
+    --------
+    >>> from fastrock import housner_restitution
+    >>> round(housner_restitution(0.3), 4)     # 1 - 1.5 sin^2(0.3)
+    0.869
     """
     return 1.0 - mass_ratio * math.sin(alpha) ** 2
 

@@ -33,6 +33,16 @@ class Friction:
     on the ground, as the classic rocking models implicitly do (they never
     check N), and the base slips without friction while N < 0; the time
     spent so is reported as ``time_unloaded``.
+
+    Examples
+    --------
+    With mu_s = 0.2 below b/h = 0.25 the block slides instead of rocking:
+
+    >>> from fastrock import Friction, Pulse, RigidBlock, simulate
+    >>> block = RigidBlock.rectangle(b=0.2, h=0.8)
+    >>> run = simulate(block, Pulse(amplitude=0.4, frequency=1.5), friction=Friction(0.2))
+    >>> run.outcome, run.status, round(float(run.metrics["max_slide"]), 3)
+    ('slide', 'safe:no-uplift', 0.056)
     """
 
     mu_s: float

@@ -67,6 +67,19 @@ class Wall:
     :meth:`RigidBlock.from_inertia` (whose outline is taken as a rectangle of
     half-dimensions R sin(alpha), R cos(alpha)).  Ground impacts keep the
     body's Housner restitution e.
+
+    Examples
+    --------
+    A wall 5 cm away on the side the block falls to catches it:
+
+    >>> from fastrock import Pulse, RigidBlock, Wall, simulate
+    >>> block = RigidBlock.rectangle(b=0.2, h=0.8)
+    >>> pulse = Pulse(amplitude=0.4, frequency=1.5)
+    >>> simulate(block, pulse).outcome
+    'mode1'
+    >>> run = simulate(block, pulse, wall=Wall(0.05, side=+1))
+    >>> run.outcome, run.metrics["wall_impacts"]
+    ('safe', 2)
     """
 
     gap: float

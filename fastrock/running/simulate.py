@@ -56,11 +56,21 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         Integrator settings (see :class:`fastrock.Solver`); ``dt`` selects the
         fixed-step mode.
     early_exit : bool
-        Stop once the outcome is decided (see README, "Early decisions").
+        Stop once the outcome is decided (docs: guide/outcomes, "Early decisions").
 
     Returns
     -------
     SimulationResult
+
+    Examples
+    --------
+    >>> from fastrock import Pulse, RigidBlock, simulate
+    >>> block = RigidBlock.rectangle(b=0.2, h=0.8)
+    >>> run = simulate(block, Pulse(amplitude=0.4, frequency=1.5))   # 0.4 g, 1.5 Hz
+    >>> run.outcome, run.status, run.metrics["impacts"]
+    ('mode1', 'overturn:mode1', 1)
+    >>> list(run.events.event)
+    ['uplift', 'impact', 'pass-alpha', 'overturn']
     """
     body = registry.model_body(body)
     kw = {}

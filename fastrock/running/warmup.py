@@ -98,8 +98,8 @@ def is_ready(kernel):
 
 
 #: First-use cost [s] of a model's two entry kernels with an empty cache, measured with
-#: ``fastrock warmup`` on this project's 2-core machine under a load of about 3 (README,
-#: "Compile time"); a quiet machine takes about two thirds of it.
+#: ``fastrock warmup`` on this project's 2-core machine under a load of about 3 (docs:
+#: guide/install, "Compilation and the kernel cache"); a quiet machine takes about two thirds of it.
 TYPICAL_COMPILE_SECONDS = {"rigid": 34, "rigid_wall": 31, "rigid_friction": 33, "contact": 67,
                            "flexible": 31, "flexible_friction": 43, "flexible_wall": 40, "flexible_flight": 52, "two_spring": 30, "switching": 30,
                            "linear_sdof": 29}

@@ -139,6 +139,16 @@ def half_cycles(t, theta, lift_off=None, definition="impact", *, theta_y=None,
                          NaN if there is no previous extreme ("impact" row 0)
         kind       -     "rocking" or "vibration", see ``lift_off``, ``theta_y``, ``t_switch``
         ========== ===== ======================================================================
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from fastrock import RigidBlock, half_cycles, simulate
+    >>> block = RigidBlock.rectangle(b=0.2, h=0.8)
+    >>> run = simulate(block, None, theta0=0.1, duration=6.0, t_eval=np.linspace(0, 6, 6001))
+    >>> hc = half_cycles(run.history.t, run.history.theta)
+    >>> round(float(hc.peak_ratio[1]), 3)     # the first rebound keeps 79 % of theta0
+    0.789
     """
     first = first_index(definition)
     t = as_float_array("t", t)

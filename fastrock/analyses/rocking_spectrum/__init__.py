@@ -14,8 +14,8 @@ where ``Tp = 2 pi / p`` is the period parameter of the block at
 satisfies it never uplifts); ``beta < 1`` means the dynamic analysis needs a
 smaller base than that rule.
 
-Definitions (the same in the table, the plot and the README)
-------------------------------------------------------------
+Definitions (the same in the table, the plot and the docs)
+----------------------------------------------------------
 * **Stable**: the run's outcome is in ``stable_outcomes`` (default only
   ``"safe"``: never uplifted, came back to rest, or proven unable to
   overturn).  "leaning" (resting against a wall) is *not* stable by default
