@@ -40,6 +40,7 @@ from fastrock.io.readers import read_record
 from fastrock.running.solver import Solver
 from fastrock.running.result import SimulationResult
 from fastrock.running.simulate import simulate
+from fastrock.running.batch import run_batch
 from fastrock.running.foundation import simulate_foundation
 from fastrock.running.scene import Scene
 from fastrock.analyses.spectrum import overturning_spectrum
@@ -62,7 +63,7 @@ __all__ = [
     "TwoSpringFoundation", "SwitchingFoundation", "LinearVibration",
     "Pulse", "SampledMotion", "GroundMotion", "read_record", "Scene", "G_STANDARD",
     # running
-    "Solver", "simulate", "SimulationResult", "simulate_foundation",
+    "Solver", "simulate", "run_batch", "SimulationResult", "simulate_foundation",
     # analyses and studies
     "overturning_spectrum", "rocking_spectrum", "half_cycles", "fit_free_rocking", "FreeRockingFit",
     "Study", "run_study", "fit_fragility", "FragilityFit", "plot_fragility",
