@@ -6,10 +6,15 @@ import os
 import sys
 
 sys.path.insert(0, os.path.abspath("_ext"))
-# document the source tree this folder belongs to (fastrock imports from the repository root)
-sys.path.insert(0, os.path.abspath(".."))
 
-import fastrock  # noqa: E402
+# The fastrock that Python finds (the installed or editable package, as the tests import it, so
+# the doctests load the kernels the tests compiled into the cache); without one, the source tree
+# this folder belongs to (fastrock imports from the repository root).
+try:
+    import fastrock
+except ImportError:
+    sys.path.insert(0, os.path.abspath(".."))
+    import fastrock
 
 project = "fastrock"
 author = "the fastrock authors"

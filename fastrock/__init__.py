@@ -34,6 +34,7 @@ from fastrock.constants import G_STANDARD, VERSION
 from fastrock.model.excitation import Pulse, SampledMotion
 from fastrock.model.friction import Friction
 from fastrock.model.wall import Wall
+from fastrock.model.ground import Ground
 from fastrock.model.foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation
 from fastrock.io.ground_motion import GroundMotion
 from fastrock.io.readers import read_record
@@ -54,18 +55,19 @@ from fastrock.studies.definition import Study
 from fastrock.studies.run import run_study
 # fastrock.plotting registers the figure of SimulationResult.plot() on import
 from fastrock.plotting.fragility import plot_fragility
+from fastrock.plotting.snapshots import plot_snapshots
 
 del foundation_predictors
 
 __all__ = [
     # bodies, scenes and excitations
-    "RigidBlock", "RigidBody", "FlexibleBody", "housner_restitution", "Wall", "Friction",
+    "RigidBlock", "RigidBody", "FlexibleBody", "housner_restitution", "Wall", "Friction", "Ground",
     "TwoSpringFoundation", "SwitchingFoundation", "LinearVibration",
     "Pulse", "SampledMotion", "GroundMotion", "read_record", "Scene", "G_STANDARD",
     # running
     "Solver", "simulate", "run_batch", "SimulationResult", "simulate_foundation",
     # analyses and studies
     "overturning_spectrum", "rocking_spectrum", "half_cycles", "fit_free_rocking", "FreeRockingFit",
-    "Study", "run_study", "fit_fragility", "FragilityFit", "plot_fragility",
+    "Study", "run_study", "fit_fragility", "FragilityFit", "plot_fragility", "plot_snapshots",
 ]
 __version__ = VERSION

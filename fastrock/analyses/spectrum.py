@@ -6,6 +6,7 @@ import pandas as pd
 
 from fastrock import _validate as V
 from fastrock.model import excitation as X
+from fastrock.model.ground import CLOSED_FORM_MODELS, as_ground
 from fastrock.running import registry
 from fastrock.running.outcomes import outcome_of, status_of, warn_unstable
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
@@ -80,7 +81,8 @@ def _signs(sign):
 
 
 def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, pulse="one-sine",
-                         wall=None, friction=None, foundation=None, mass=1.0, vertical=None, solver=None,
+                         wall=None, friction=None, foundation=None, ground=None, mass=1.0, vertical=None,
+                         solver=None,
                          rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
                          early_exit=True, chunk_size=None, progress=True, boundary_check=False,
                          amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p", kind=None):
@@ -116,6 +118,10 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         (``body`` a RigidBlock with b and h); every run starts at rest in
         static equilibrium on it.  Adds the columns time_rocking and
         time_contact [s].
+    ground : Ground, optional
+        Sloping ground, the same in every run; None: level ground.  The
+        ratios keep their level-ground meaning (a_p / (g tan alpha)); sign
+        +1 pulses start toward +x, downhill.
     mass : float
         Block mass [kg] with ``foundation`` (the foundation's stiffnesses
         are absolute).
@@ -165,6 +171,11 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         raise ValueError("frequency_ratios must be > 0")
     amps, freqs = _to_ratios(body, amps, freqs, amplitude_unit, frequency_unit)
     spec = registry.select(body, wall, friction, foundation, V.positive("mass", mass))
+    ground = as_ground(ground)
+    if ground is not None:
+        ground.check_scene(body, friction=friction, flexible=spec.flexible, foundation=foundation)
+        if spec.name in CLOSED_FORM_MODELS:
+            early_exit = False      # their closed-form early decisions assume level ground
     vertical = X.as_excitation(vertical, "vertical")
     signs = _signs(sign)
     t_after = V.run_time("t_after", V.non_negative("t_after", t_after))
@@ -194,6 +205,11 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         vhdr, smp = X.to_header(body, None, vertical)
         HDR[:, L.V_CHANNEL:] = vhdr[L.V_CHANNEL:]
         t_vertical = X.end_time(body, None, vertical)
+    if ground is not None:
+        ground.fill_header(HDR[0], body.g)
+        HDR[:, L.S_BLOCK:] = HDR[0, L.S_BLOCK:]
+        if spec.name == "rigid" and vertical is None:
+            ground.check_lift_off(body, float(amp.max()))
     solver.check_fixed_steps(V.run_time("t_after", max(t_longest, t_vertical) + t_after,
                                         "the longest run (pulse plus t_after)"), "the longest run")
     opt = solver.options(0.0, early_exit)
@@ -228,7 +244,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         warn_unstable(status[:done], MET[:done], solver.dt)
     df.attrs.update(interrupted=done < n, kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e,
                     pulse=pulse, solver=solver.name, amplitude_unit=amplitude_unit,
-                    frequency_unit=frequency_unit)
+                    frequency_unit=frequency_unit, slope=ground.slope if ground is not None else 0.0)
     if spec.name == "rigid_body":
         df.attrs.update(alpha1=body.alpha1, alpha2=body.alpha2, p1=body.p1, p2=body.p2, e12=body.e12,
                         e21=body.e21, ratio_side=body.smaller_side)
@@ -239,8 +255,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
                                     atol=(solver.atol if solver.atol is not None else solver.rtol * 1e-2) / 2))
         df2 = overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign, pulse=pulse,
                                    amplitude_unit=amplitude_unit, frequency_unit=frequency_unit, wall=wall,
-                                   friction=friction, foundation=foundation, mass=mass, vertical=vertical,
-                                   solver=half, t_after=t_after, early_exit=early_exit,
+                                   friction=friction, foundation=foundation, ground=ground, mass=mass,
+                                   vertical=vertical, solver=half, t_after=t_after, early_exit=early_exit,
                                    chunk_size=chunk_size, progress=progress)
         m = min(len(df), len(df2))
         df = df.iloc[:m].copy()

@@ -9,6 +9,7 @@ from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.running import registry
 from fastrock.running.outcomes import MODE_NAMES, outcome_of, status_of, warn_unstable
+from fastrock.model.ground import CLOSED_FORM_MODELS, as_ground
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
 from fastrock.running.sweep import call_kernel
 from fastrock.kernels import layout as L
@@ -18,7 +19,8 @@ from fastrock.running.result import (SimulationResult, ground_at, events_frame, 
     friction_metrics, metrics_dict, run_inputs)
 
 
-def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, foundation=None, mass=1.0,
+def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, foundation=None, ground=None,
+             mass=1.0,
              theta0=0.0, dtheta0=0.0, duration=None, t_after=DEFAULT_T_AFTER, t_eval=None, solver=None,
              rtol=None, atol=None, dt=None, early_exit=False, max_steps=None, record_breakpoints=None,
              history_capacity=None, resample_vertical=False):
@@ -44,6 +46,10 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         A flexible foundation under a RigidBlock (rocking against vibration);
         the run is :func:`fastrock.foundation.simulate_foundation`'s, whose
         result documents the extra history columns.
+    ground : Ground, optional
+        Sloping ground (``Ground(slope=phi)``); None: level ground.  On a
+        slope x and the slip d run along the surface, positive downhill,
+        and the history's ``a_g``, ``a_v`` are the channels as given.
     mass : float
         Block mass [kg] with ``foundation``.
     theta0, dtheta0 : float
@@ -80,6 +86,11 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         kw["record_breakpoints"] = record_breakpoints
     resample_vertical = V.boolean("resample_vertical", resample_vertical)
     spec = registry.select(body, wall, friction, foundation, V.positive("mass", mass))
+    ground = as_ground(ground)
+    if ground is not None:
+        ground.check_scene(body, friction=friction, flexible=spec.flexible, foundation=foundation)
+        # the closed-form early decisions of the rigid families assume level ground
+        early_exit = early_exit if spec.name not in CLOSED_FORM_MODELS else False
     vertical = X.match_components(excitation, vertical, resample_vertical)
     if foundation is not None:
         from fastrock.running.foundation import simulate_foundation
@@ -97,7 +108,9 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     if wall is not None:
         wall.check_initial(theta0, body)
     hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
-                                        history_capacity, solver, early_exit)
+                                        history_capacity, solver, early_exit, ground)
+    if ground is not None and spec.name == "rigid" and vertical is None:
+        ground.check_lift_off(body, X.channel_peak(hdr, smp))
     y0 = np.zeros(spec.n_state)
     y0[spec.theta_index] = theta0
     y0[spec.theta_index + 1] = dtheta0
@@ -117,7 +130,9 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         break
     nh = int(cnt[C_NHIST])
     t = hist_t[:nh]
-    ag, av = ground_at(t, hdr, smp)
+    level = hdr.copy()
+    level[L.S_ON] = 0.0         # the channels as given, not their slope-frame parts
+    ag, av = ground_at(t, level, smp)
     ti = spec.theta_index
     th = hist_y[:nh, ti]
     history = pd.DataFrame({
@@ -168,10 +183,11 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     return SimulationResult(history=history, events=events, outcome=outcome,
                             status=status_of(code), status_code=code,
                             metrics=metrics, kernel=spec.name, body=body,
-                            excitation=excitation, vertical=vertical,
+                            excitation=excitation, vertical=vertical, ground=ground,
                             effects=tuple(e for e, on in (("flexible", spec.flexible),
                                                           ("friction", spec.friction),
                                                           ("flight", spec.model.flight),
                                                           ("wall", wall is not None),
+                                                          ("slope", ground is not None),
                                                           ("vertical", vertical is not None)) if on))
 
