@@ -270,3 +270,21 @@ def test_study_variant_on_a_slope(tmp_path):
     with pytest.raises(Exception, match="slope"):
         Study(records=[record], bodies=[body], levels=[0.2],
               variants=[{"ground": {"slope": 0.3}}]).prepare()
+
+
+def test_asymmetric_body_on_a_slope_uses_its_downhill_side():
+    """An asymmetric body (pivots at -b1 and +b2): the downhill (+x) side's
+    alpha2 sets both its standing limit and its downhill uplift threshold
+    g tan(alpha2 - phi)."""
+    body = fr.RigidBody(mass=1.0, inertia=0.05, b1=0.3, h1=0.6, b2=0.15, h2=0.6)
+    alpha2 = math.atan2(0.15, 0.6)
+    ground = fr.Ground(math.radians(5.0))
+    threshold = G * math.tan(alpha2 - ground.slope)
+    lifted = []
+    for factor in (1 - 1e-6, 1 + 1e-6):
+        r = fr.simulate(body, fr.Pulse(threshold * factor / G, sign=-1, kind="rectangular", duration=0.2),
+                        ground=ground, duration=0.3)
+        lifted.append(bool(np.isfinite(r.metrics["time_uplift"])))
+    assert lifted == [False, True]
+    with pytest.raises(ValueError, match="downhill side"):
+        fr.simulate(body, fr.Pulse(0.01, 1.0), ground=fr.Ground(alpha2 + 0.01))

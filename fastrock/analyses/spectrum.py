@@ -6,7 +6,7 @@ import pandas as pd
 
 from fastrock import _validate as V
 from fastrock.model import excitation as X
-from fastrock.model.ground import CLOSED_FORM_MODELS, as_ground
+from fastrock.model.ground import CLOSED_FORM_MODELS, GROUNDED_MODELS, as_ground
 from fastrock.running import registry
 from fastrock.running.outcomes import outcome_of, status_of, warn_unstable
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
@@ -208,7 +208,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     if ground is not None:
         ground.fill_header(HDR[0], body.g)
         HDR[:, L.S_BLOCK:] = HDR[0, L.S_BLOCK:]
-        if spec.name == "rigid" and vertical is None:
+        if spec.name in GROUNDED_MODELS and vertical is None:
             ground.check_lift_off(body, float(amp.max()))
     solver.check_fixed_steps(V.run_time("t_after", max(t_longest, t_vertical) + t_after,
                                         "the longest run (pulse plus t_after)"), "the longest run")

@@ -17,7 +17,9 @@ from ..kernels import layout as L
 
 DIRECTIONS = ("horizontal", "slope")
 #: models whose early decisions use closed forms of free rocking on level ground
-CLOSED_FORM_MODELS = ("rigid", "rigid_wall")
+CLOSED_FORM_MODELS = ("rigid", "rigid_wall", "rigid_body")
+#: models that never leave the ground (no flight event without a vertical channel)
+GROUNDED_MODELS = ("rigid", "rigid_body")
 
 
 @dataclass(frozen=True)
@@ -92,9 +94,11 @@ class Ground:
             raise ValueError(f"{where}: sloping ground runs with a RigidBlock only so far (a flexible column "
                              "or foundation would start away from its static deflection on the incline)")
         demand = self.static_demand()
-        if demand >= math.tan(body.alpha):
+        alpha = getattr(body, "alpha2", body.alpha)     # the downhill (+x) side of an asymmetric body
+        if demand >= math.tan(alpha):
             raise ValueError(f"{where}: the block cannot stand on it: tan(slope) = {demand:.4g} >= tan(alpha) = "
-                             f"{math.tan(body.alpha):.4g} (its centre of mass lies beyond the downhill corner)")
+                             f"{math.tan(alpha):.4g} of its downhill side (its centre of mass lies beyond the "
+                             "downhill corner)")
         if friction is not None and demand >= friction.mu_s:
             raise ValueError(f"{where}: steeper than friction can hold at rest: tan(slope) = {demand:.4g} >= "
                              f"mu_s = {friction.mu_s:g}")

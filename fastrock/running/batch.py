@@ -15,7 +15,7 @@ import pandas as pd
 
 from fastrock.kernels import layout as L
 from fastrock.model import excitation as X
-from fastrock.model.ground import CLOSED_FORM_MODELS, as_ground
+from fastrock.model.ground import CLOSED_FORM_MODELS, GROUNDED_MODELS, as_ground
 from fastrock.running import registry
 from fastrock.running.outcomes import outcome_of, status_of, warn_unstable
 from fastrock.running.result import (METRIC_COLUMNS, INTEGER_METRICS, flexible_metrics, flight_metrics,
@@ -65,7 +65,7 @@ def _prepare(i, scene, early_exit):
     vertical = X.match_components(scene.excitation, scene.vertical)
     hdr, smp, opt, _te, _cap = run_inputs(body, scene.excitation, vertical, scene.duration, scene.t_after,
                                           None, None, solver, exit_early, ground)
-    if ground is not None and spec.name == "rigid" and vertical is None:
+    if ground is not None and spec.name in GROUNDED_MODELS and vertical is None:
         ground.check_lift_off(body, X.channel_peak(hdr, smp))
     if scene.foundation is not None:
         from fastrock.model.foundation import block_inertia

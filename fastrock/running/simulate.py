@@ -9,7 +9,7 @@ from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.running import registry
 from fastrock.running.outcomes import MODE_NAMES, outcome_of, status_of, warn_unstable
-from fastrock.model.ground import CLOSED_FORM_MODELS, as_ground
+from fastrock.model.ground import CLOSED_FORM_MODELS, GROUNDED_MODELS, as_ground
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
 from fastrock.running.sweep import call_kernel
 from fastrock.kernels import layout as L
@@ -109,7 +109,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         wall.check_initial(theta0, body)
     hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
                                         history_capacity, solver, early_exit, ground)
-    if ground is not None and spec.name == "rigid" and vertical is None:
+    if ground is not None and spec.name in GROUNDED_MODELS and vertical is None:
         ground.check_lift_off(body, X.channel_peak(hdr, smp))
     y0 = np.zeros(spec.n_state)
     y0[spec.theta_index] = theta0

@@ -9,7 +9,7 @@ from fastrock.running.outcomes import outcome_of, status_of
 from fastrock.constants import G_STANDARD
 from fastrock.analyses.rocking_spectrum.inputs import gap_of_wall
 from fastrock.kernels import layout as L
-from fastrock.model.ground import CLOSED_FORM_MODELS
+from fastrock.model.ground import CLOSED_FORM_MODELS, GROUNDED_MODELS
 from fastrock.analyses.fragility import COLLAPSE_OUTCOMES
 from fastrock.studies.definition import StudyError
 from fastrock.studies.output import arrow_table
@@ -100,7 +100,7 @@ class Plan:
         for (b, v), spec in prep.specs.items():       # the rocking model on a slope stays on the ground
             gnd = prep.effects[v].get("ground")
             rows = (B == b) & (W == v)
-            if gnd is not None and spec.name == "rigid" and rows.any():
+            if gnd is not None and spec.name in GROUNDED_MODELS and rows.any():
                 try:
                     gnd.check_lift_off(prep.bodies[b], float(np.max(np.abs(scale[rows]) * pga[R[rows]])))
                 except ValueError as exc:
