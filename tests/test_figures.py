@@ -41,7 +41,7 @@ def test_history_adds_slip_and_deflection_panels_and_names_impacts(tmp_path):
     assert [a.get_ylabel() for a in fig.axes] == ["ground acc. [g]", r"$\theta/\alpha$ [-]", "slip d [m]",
                                                  "deflection u [m]"]
     fig.savefig(tmp_path / "f.png")
-    rec = fr.records.load_default_record()
+    rec = fr.io.default_records.load_default_record()
     r = fr.simulate(fr.RigidBlock.rectangle(0.2, 1.0), rec, wall=fr.Wall(0.02))
     labels = _labels(r.plot().axes[1])
     n_ground, n_wall = r.metrics["impacts"], r.metrics["wall_impacts"]

@@ -158,8 +158,9 @@ def work_precision(**kw):
 
 
 def free(fn, *args, **kw):
-    from fastrock.analyses.freerocking import fitting as freerocking
-    return getattr(freerocking, fn)(*args, **kw)
+    from fastrock.analyses.freerocking import fitting, housner, periods
+    home = next(m for m in (fitting, housner, periods) if hasattr(m, fn))
+    return getattr(home, fn)(*args, **kw)
 
 
 def big_grid():

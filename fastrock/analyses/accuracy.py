@@ -30,6 +30,7 @@ body with friction ("flexible-friction": mu_s = 0.5, lift_off="hold"; its safe p
 from __future__ import annotations
 
 import time
+
 import numpy as np
 import pandas as pd
 

@@ -4,7 +4,9 @@ fit_free_rocking (registered with it on import).
 from __future__ import annotations
 
 import math
+
 import numpy as np
+
 from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.model.bodies import RigidBlock
@@ -27,7 +29,7 @@ def _dedupe(t, *cols):
 
 
 def foundation_half_cycles(result, definition="impact", **kw):
-    """:func:`fastrock.freerocking.half_cycles` of a simulated history, classified by lift-off.
+    """:func:`fastrock.half_cycles` of a simulated history, classified by lift-off.
 
     Rows that share a time (before/after an event) are reduced to the later one; zero
     crossings are events, so their times are exact. Works for :func:`simulate_foundation`
@@ -113,11 +115,11 @@ def _release_history(body, foundation, mass, theta0, t_end, rtol, max_steps):
 
 def make_predictor(model, body=None, mass=1.0, *, inertia_ratio=0.75, g=G_STANDARD,
                    rtol=1e-10, return_peaks=False, max_duration=600.0, max_steps=300_000):
-    """A ``predictor(params, n)`` for :func:`fastrock.freerocking.fit_free_rocking`.
+    """A ``predictor(params, n)`` for :func:`fastrock.fit_free_rocking`.
 
     It simulates the free release from rest at ``params["theta0"]`` and returns the durations
     [s] of the first ``n`` half-cycles (``params["definition"]``, via
-    :func:`fastrock.freerocking.half_cycles`; fewer if the block overturns or stops), and their
+    :func:`fastrock.half_cycles`; fewer if the block overturns or stops), and their
     peak angles [rad] too if ``return_peaks``.
 
     Parameters understood in ``params`` (the fitted ones are the keys of ``params0``; the

@@ -5,7 +5,9 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
+
 import numpy as np
+
 from fastrock import _validate as V
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+
 from fastrock.analyses.accuracy import CLOCKS, DTS, FAMILIES, MEASURE_LABELS, RTOLS, work_precision
 from fastrock.plotting.accuracy import plot_work_precision
 

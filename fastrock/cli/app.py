@@ -6,7 +6,9 @@ import argparse
 import math
 import sys
 import time
+
 import numpy as np
+
 from fastrock.cli.output import (EXIT_INTERRUPTED, MAX_GRID_RUNS, add_output_options, grid_option,
     interrupted_exit, write_table, wrote)
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+
 from fastrock.analyses.freerocking.csv_input import fit_from_csv
 from fastrock.analyses.freerocking.housner import HALF_CYCLE_DEFINITIONS
 from fastrock.plotting.freerocking import plot_fit

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+
 import pandas as pd
+
 from fastrock import _validate as V
 from fastrock.model.bodies import RigidBlock
 from fastrock.io.default_records import load_default_record
@@ -119,7 +121,7 @@ def _cli_wall(args):
     try:
         from fastrock.model.wall import Wall
     except ImportError:
-        raise ValueError("--wall-gap needs fastrock.wall, which is not installed") from None
+        raise ValueError("--wall-gap needs fastrock.model.wall, which is not installed") from None
     return Wall(gap=args.wall_gap, side=args.wall_side)
 
 

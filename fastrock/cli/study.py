@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+
 import pandas as pd
+
 from fastrock import _validate as V
 from fastrock.analyses.fragility import MAX_BOOT, fit_fragility
 from fastrock.plotting.fragility import plot_fragility
@@ -33,7 +35,7 @@ def _cli_study(args):
           f"{a['chunk_size']} ({a['chunks_skipped']} already done, {a['chunks_run']} run) in "
           f"{a['wall_seconds']:.1f} s on {backend}" + (f" ({rate:,.0f} runs/s)" if a["chunks_run"]
                                                         else ""))
-    print(f"results: {output} (fastrock.study.load_results)")
+    print(f"results: {output} (fastrock.studies.output.load_results)")
     print("outcomes:", df["outcome"].value_counts().to_dict())
     im = {"pga": "pga_g", "pgv": "pgv"}.get(study.measure, study.measure)
     rows, table, fits = [], [], []

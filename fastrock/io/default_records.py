@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from importlib import resources
+
 from fastrock.io.ground_motion import GroundMotion
 from fastrock.io.readers import read_record
 

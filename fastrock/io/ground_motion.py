@@ -7,7 +7,9 @@ import os
 import re
 from dataclasses import dataclass
 from typing import Any, ClassVar
+
 import numpy as np
+
 from fastrock.constants import G_STANDARD
 
 

@@ -31,7 +31,9 @@ import re
 import warnings
 from pathlib import Path
 from typing import Any
+
 import numpy as np
+
 from fastrock.io.ground_motion import (GroundMotion, PGA_PLAUSIBLE_G, RecordFormatError,
     RecordUnitWarning, UNITS, canonical_unit)
 

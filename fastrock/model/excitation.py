@@ -140,7 +140,7 @@ class SampledMotion:
 
     @classmethod
     def from_record(cls, record, scale=1.0, t_start=0.0):
-        """From a :class:`fastrock.records.GroundMotion` (acc in m/s^2)."""
+        """From a :class:`fastrock.GroundMotion` (acc in m/s^2)."""
         return cls(np.asarray(record.acc, float), record.dt, "m/s2", scale, t_start,
                    getattr(record, "name", ""))
 

@@ -27,20 +27,28 @@ Small-amplitude vibration in full contact (both models, P-Delta kept):
 :meth:`TwoSpringFoundation.from_vibration` and friends build a foundation from ``omega``
 and ``zeta``.
 
-The predictors :func:`two_spring_predictor` and :func:`switching_predictor` (and
-:func:`make_predictor` for a given body) let :func:`fastrock.freerocking.fit_free_rocking`
-fit these models to measured half-cycle durations.
+The predictors of :mod:`fastrock.analyses.foundation_predictors` let
+:func:`fastrock.fit_free_rocking` fit these models to measured half-cycle durations; the runs
+are :func:`fastrock.simulate_foundation` (:mod:`fastrock.running.foundation`).
 
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+
 import numpy as np
+
 from fastrock import _validate as V
 from fastrock.model.bodies import RigidBlock
+# the kernels' parameter layout (kernels/layout.py imports no kernel)
 from fastrock.kernels.layout import (N_PAR_FOUNDATION as N_PAR, P_B, P_CT, P_CV, P_EF, P_H, P_I_0,
-    P_I_C, P_I_G, P_KT, P_KV, P_MASS, P_THETA_Y)
+                                     P_I_C, P_I_G, P_KT, P_KV, P_MASS, P_THETA_Y)
+
+# discrete-state slots of the two-spring model (kept here as plain ints, checked against the
+# kernel in the tests)
+D_RIGHT = 6
+D_LEFT = 7
 
 
 # ------------------------------------------------------------------------------ body

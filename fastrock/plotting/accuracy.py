@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+
 from fastrock.analyses.accuracy import CLOCKS, MEASURE_LABELS, default_measures
 
 

@@ -29,6 +29,7 @@ OUTCOME_LABELS = {
 
 
 def get_pyplot():
+    """matplotlib.pyplot, with the Agg backend when no display is set (imported on first use)."""
     import matplotlib
     if not os.environ.get("DISPLAY") and matplotlib.get_backend().lower() not in ("agg", "pdf", "svg"):
         matplotlib.use("Agg")

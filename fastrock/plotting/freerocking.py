@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+
 from fastrock.analyses.freerocking.checks import check_alpha, check_positive
 from fastrock.analyses.freerocking.fitting import FreeRockingFit
 from fastrock.analyses.freerocking.housner import housner_half_cycle_durations

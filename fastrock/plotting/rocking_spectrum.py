@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+
 from fastrock.analyses.rocking_spectrum.definitions import upper_bound_beta
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+
 from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.model.bodies import RigidBlock
@@ -13,15 +14,12 @@ from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
 from fastrock.running.sweep import call_kernel
 from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
-from fastrock.model.foundation import block_inertia
+from fastrock.model.foundation import D_LEFT, D_RIGHT, block_inertia
 
 
 #: Contact names of the history's ``contact`` column, by kernel mode.
 CONTACT_NAMES = {L.MODE_REST: "contact", L.MODE_ROCK: "rock", L.MODE_FLIGHT: "flight"}
 
-D_RIGHT = 6
-
-D_LEFT = 7
 
 
 def foundation_spec(body, foundation, mass=1.0):

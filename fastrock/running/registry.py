@@ -37,7 +37,7 @@ states its own:
    rigid layout (alpha, p, e, g, theta_over), which the shared kernel pieces
    (``rigid.overturned``, ``rigid.passed_alpha``) read.
 6. ``columns`` names the result columns the model adds to the common ones
-   (``fastrock.spectrum.SPECTRUM_COLUMNS``); ``outcomes`` lists the outcome
+   (``fastrock.analyses.spectrum.SPECTRUM_COLUMNS``); ``outcomes`` lists the outcome
    classes it can return.
 7. ``cli_options`` and ``toml_keys`` list the command-line options and
    scene (TOML) sections that describe the model's body and effects; ``tests/test_registry.py``

@@ -4,8 +4,10 @@ simulate and simulate_foundation: kernel inputs, metrics, events, ground motion.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+
 import numpy as np
 import pandas as pd
+
 from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.running.outcomes import EVENT_NAMES
@@ -99,7 +101,7 @@ class SimulationResult:
     outcome : str
         "safe", "mode1", "mode2", "leaning", "flight" or "failed".
     status : str
-        Refined status, e.g. "safe:rest" (see fastrock.outcomes).
+        Refined status, e.g. "safe:rest" (see fastrock.running.outcomes).
     metrics : dict
         ``max |theta|`` (``max_rotation`` [rad], ``max_rotation_ratio``), impacts,
         times of uplift / overturning [s], nfev, steps ...
@@ -190,6 +192,8 @@ def run_inputs(body, excitation, vertical, duration, t_after, t_eval, history_ca
 
 
 def ground_at(t, hdr, smp):
+    """Horizontal and vertical ground acceleration [m/s^2] at times ``t`` [s], from a kernel
+    header and its samples."""
     from fastrock.kernels.excitation import ground
     ag = np.empty(t.size)
     av = np.empty(t.size)

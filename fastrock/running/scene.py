@@ -6,6 +6,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
+
 from fastrock import _validate as V
 from fastrock.model.bodies import FlexibleBody, RigidBlock
 from fastrock.model.excitation import Pulse, SampledMotion, as_excitation
@@ -160,6 +161,7 @@ def _build(cls, kw, section):
 
 
 def only_keys(d, section, allowed):
+    """``d`` unchanged, or a ValueError naming the keys of [section] outside ``allowed``."""
     extra = set(d) - allowed
     if extra:
         raise ValueError(f"[{section}]: unknown key(s) {sorted(extra)}; allowed: {sorted(allowed)}")
@@ -167,6 +169,7 @@ def only_keys(d, section, allowed):
 
 
 def body_from_table(d):
+    """The body of a scene's [body] table (type = "rigid" | "flexible")."""
     kind = d.pop("type", "rigid")
     if kind == "rigid":
         if "b" in d or "h" in d:

@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import warnings
+
 import numpy as np
 import pandas as pd
+
 from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.running import registry
@@ -44,7 +46,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         no sliding degree of freedom at all.
     foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration, optional
         A flexible foundation under a RigidBlock (rocking against vibration);
-        the run is :func:`fastrock.foundation.simulate_foundation`'s, whose
+        the run is :func:`fastrock.simulate_foundation`'s, whose
         result documents the extra history columns.
     ground : Ground, optional
         Sloping ground (``Ground(slope=phi)``); None: level ground.  On a

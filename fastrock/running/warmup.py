@@ -1,6 +1,6 @@
 """Compile (or load from the on-disk cache) kernels ahead of time.
 
-Every model of :mod:`fastrock.registry` has a small example scene here; warming a model calls its
+Every model of :mod:`fastrock.running.registry` has a small example scene here; warming a model calls its
 two entry kernels (single run and parallel sweep) once on that scene, which is what a first
 ``simulate`` or ``overturning_spectrum`` would compile.
 """

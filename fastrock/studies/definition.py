@@ -11,7 +11,9 @@ import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
+
 import numpy as np
+
 from fastrock import _validate as V
 from fastrock.running import registry
 from fastrock.model.bodies import FlexibleBody, RigidBlock
@@ -47,7 +49,7 @@ class Study:
     Parameters
     ----------
     records : sequence
-        File paths (any format :func:`fastrock.records.read_record` reads;
+        File paths (any format :func:`fastrock.read_record` reads;
         ``"default"`` is the packaged El Centro record), :class:`GroundMotion`
         objects, or dicts ``{"file": ..., "unit": ..., "dt": ...}`` (also
         ``"column"`` and ``"decimal"``, as in :func:`fastrock.read_record`).

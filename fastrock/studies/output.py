@@ -6,7 +6,9 @@ import json
 import os
 import uuid
 from pathlib import Path
+
 import pandas as pd
+
 from fastrock.studies.definition import FORMAT, StudyError
 
 
@@ -24,6 +26,7 @@ RESULTS_DIR = "results"
 
 # ============================================================ output folder
 def need_pyarrow():
+    """Raise a StudyError naming the install command when pyarrow is missing."""
     try:
         import pyarrow  # noqa: F401
         import pyarrow.parquet  # noqa: F401
@@ -37,6 +40,8 @@ def _chunk_path(folder, cid):
 
 
 def atomic_write_bytes(path, data):
+    """Write ``data`` to ``path`` through a temporary file and os.replace (a reader never sees
+    half a file)."""
     tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
     with open(tmp, "wb") as fh:
         fh.write(data)
@@ -81,6 +86,7 @@ def chunk_done(folder, chunk, study_hash):
 
 
 def manifest_of(plan, study):
+    """The manifest.json contents of a study's plan."""
     prep = plan.prep
     return {
         "format": FORMAT,

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+
 import numpy as np
+
 from fastrock.running.outcomes import outcome_of, status_of
 from fastrock.constants import G_STANDARD
 from fastrock.analyses.rocking_spectrum.inputs import gap_of_wall

@@ -7,6 +7,7 @@ import os
 import time
 import warnings
 from pathlib import Path
+
 from fastrock import _validate as V
 from fastrock.running.sweep import Progress
 from fastrock.studies.definition import Study, StudyError
@@ -71,7 +72,7 @@ def run_study(study, output, backend=None, client=None, scheduler=None, chunk_si
         saved; rerun to retry those).
     """
     if not isinstance(study, Study):
-        raise StudyError(f"study must be a fastrock.study.Study, got {type(study).__name__}")
+        raise StudyError(f"study must be a fastrock.Study, got {type(study).__name__}")
     if backend is None:
         backend = "dask" if (client is not None or scheduler is not None) else "local"
     if backend not in ("local", "dask"):

@@ -5,7 +5,9 @@ from __future__ import annotations
 import os
 import threading
 import time
+
 import numpy as np
+
 from fastrock.running.sweep import call_kernel
 from fastrock.kernels import layout as L
 
@@ -61,6 +63,7 @@ def run_chunk(payload):
 
 
 def worker_info():
+    """Versions and process id of a worker (fastrock, numba, pid)."""
     import numba
     from fastrock.constants import VERSION
     return {"fastrock": VERSION, "numba": numba.__version__, "pid": os.getpid()}

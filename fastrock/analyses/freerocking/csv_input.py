@@ -7,8 +7,10 @@ import io
 import math
 import re
 from pathlib import Path
+
 import numpy as np
 import pandas as pd
+
 from fastrock.analyses.freerocking.fitting import DefinitionWarning, FreeRockingFit, fit_free_rocking
 from fastrock.analyses.freerocking.housner import HALF_CYCLE_DEFINITIONS
 

@@ -5,8 +5,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+
 import numpy as np
 import pandas as pd
+
 from fastrock import _validate as V
 from fastrock.analyses.freerocking.checks import as_float_array, check_alpha, check_theta0
 from fastrock.analyses.freerocking.housner import (HALF_CYCLE_DEFINITIONS, first_index, half_cycle_indices,
@@ -226,8 +228,8 @@ def _as_groups(values, name, n_groups=None, allow_nan=False):
 
 
 #: Built-in predictors of fit_free_rocking's models other than "housner", by name; the models
-#: that provide them register here (fastrock.foundation: "two-spring", "switching"), so that this
-#: module does not import them.
+#: that provide them register here (fastrock.analyses.foundation_predictors: "two-spring",
+#: "switching"), so that this module does not import them.
 _PREDICTORS = {}
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+
 from fastrock.analyses.freerocking.checks import as_float_array, check_positive
 from fastrock.analyses.freerocking.housner import first_index
 

@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import numpy as np
+
 from fastrock import _validate as V
 from fastrock.analyses.freerocking.checks import (as_float_array, check_alpha, check_e,
     check_positive, check_theta0, scalar_or_array)
 from fastrock.analyses.freerocking.periods import quarter_period_unit
 
 
+#: The half-cycle definitions: "impact" (impact to impact) and "peak" (peak to peak).
 HALF_CYCLE_DEFINITIONS = ("impact", "peak")
 
 
@@ -119,6 +121,7 @@ def restitution_from_peak_ratio(ratio, theta, alpha):
 
 
 def first_index(definition: str) -> int:
+    """Index of the first half-cycle of a definition: 0 for "impact", 1 for "peak"."""
     if definition not in HALF_CYCLE_DEFINITIONS:
         raise ValueError(f"definition must be one of {HALF_CYCLE_DEFINITIONS}; got {definition!r}")
     return 0 if definition == "impact" else 1
@@ -175,6 +178,7 @@ def housner_half_cycle_durations(theta0, alpha, p, e, half_cycle, definition="im
 
 
 def half_cycle_indices(half_cycle, first: int) -> np.ndarray:
+    """Half-cycle indices from a count (``first`` onwards) or an array of non-negative ints."""
     if np.ndim(half_cycle) == 0:
         n = int(half_cycle)
         if n < 0 or n != half_cycle:

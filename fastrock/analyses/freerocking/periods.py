@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.polynomial.legendre import leggauss
+
 from fastrock.analyses.freerocking.checks import (as_float_array, check_alpha, check_positive,
     check_theta0, scalar_or_array)
 

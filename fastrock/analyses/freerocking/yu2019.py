@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+
 import pandas as pd
+
 from fastrock.analyses.freerocking.csv_input import read_half_cycles_csv
 
 
@@ -33,7 +35,7 @@ YU2019_BLOCK["e_housner"] = 1.0 - (YU2019_BLOCK["mass"] * YU2019_BLOCK["R"] ** 2
 YU2019_BLOCK["e_housner_rectangle"] = 1.0 - 1.5 * math.sin(
     math.radians(YU2019_BLOCK["alpha_deg"])) ** 2
 
-_DATA_DIR = Path(__file__).resolve().parent / "data"
+_DATA_DIR = Path(__file__).resolve().parents[2] / "data"
 
 
 def load_yu2019() -> pd.DataFrame:

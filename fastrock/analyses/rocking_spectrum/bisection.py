@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+
 import numpy as np
 import pandas as pd
+
 from fastrock import _validate as V
 from fastrock.model.bodies import RigidBlock
 from fastrock.analyses.rocking_spectrum.definitions import minimum_stable_on_grid

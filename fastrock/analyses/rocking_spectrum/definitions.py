@@ -5,8 +5,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+
 import numpy as np
 import pandas as pd
+
 from fastrock.model.bodies import RigidBlock
 from fastrock.analyses.rocking_spectrum.engine import STABLE_OUTCOMES, T_AFTER, rocking_spectrum_runs
 

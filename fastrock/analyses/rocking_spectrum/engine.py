@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+
 from fastrock import _validate as V
 from fastrock.running import registry
 from fastrock.model.bodies import RigidBlock
@@ -137,6 +138,7 @@ def rows_sweep(records, rec_idx, b, s, wall_idx, walls, *, e, solver, t_after, e
 
 
 def spectrum_solver(solver, rtol, atol, dt, record_breakpoints=None):
+    """The Solver of the spectrum's runs (make_solver, with record_breakpoints when given)."""
     kw = {} if record_breakpoints is None else {"record_breakpoints": record_breakpoints}
     return make_solver(solver, rtol, atol, dt, **kw)
 

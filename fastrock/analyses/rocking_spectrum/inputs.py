@@ -5,7 +5,9 @@ from __future__ import annotations
 import math
 import os
 from pathlib import Path
+
 import numpy as np
+
 from fastrock import _validate as V
 from fastrock.model.bodies import RigidBlock
 from fastrock.io.ground_motion import GroundMotion
@@ -30,6 +32,7 @@ def default_walls():
 
 
 def label_of_wall(wall):
+    """Label of a wall setting: "two-sided" (None) or "wall d=<gap> m" (plus its side)."""
     if wall is None:
         return "two-sided"
     label = f"wall d={wall.gap:g} m"
@@ -40,10 +43,13 @@ def label_of_wall(wall):
 
 
 def gap_of_wall(wall):
+    """Clear gap [m] of a wall setting, NaN for two-sided rocking (None)."""
     return math.nan if wall is None else float(wall.gap)
 
 
 def as_walls(walls):
+    """Wall settings as a list of Wall or None: None gives default_walls(); gaps [m] become
+    rear walls."""
     if walls is None:
         return default_walls()
     if not isinstance(walls, (list, tuple)):
@@ -207,6 +213,7 @@ def load_records(records, unit=None, dt=None, *, column=None, decimal=None):
 
 
 def grid_values(values, name, default):
+    """A grid axis: sorted unique finite values > 0 (``default`` when None)."""
     if values is None:
         return default.copy()
     if isinstance(values, (str, bytes)):
@@ -226,6 +233,7 @@ OUTCOMES = ("safe", "mode1", "mode2", "leaning", "flight", "slide", "failed", "u
 
 
 def check_stable_outcomes(outcomes):
+    """The outcomes that count as stable, checked against OUTCOMES."""
     try:
         items = [] if isinstance(outcomes, (str, bytes)) else list(outcomes)
     except TypeError:
@@ -237,6 +245,7 @@ def check_stable_outcomes(outcomes):
 
 
 def check_record_options(unit, dt):
+    """Check --unit / --dt style options before any file is read."""
     if unit is not None:
         from fastrock.io.ground_motion import canonical_unit
         canonical_unit(unit)
@@ -245,6 +254,7 @@ def check_record_options(unit, dt):
 
 
 def check_run_length(records, solver, t_after):
+    """Refuse runs longer than the solver's fixed-step budget (the longest record plus t_after)."""
     longest = V.run_time("t_after", max(r.duration for r in records) + t_after,
                          "the longest record plus t_after")
     solver.check_fixed_steps(longest, "the longest record plus t_after")
