@@ -30,7 +30,11 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
 
     Parameters
     ----------
-    body : RigidBlock
+    body : RigidBlock, RigidBody or FlexibleBody
+        An asymmetric :class:`RigidBody` runs the two-sided rocking model,
+        each side with its own alpha and p (``theta_ratio`` and
+        ``max_rotation_ratio`` refer to the smaller alpha); a symmetric one
+        runs as its RigidBlock.
     excitation : Pulse, SampledMotion or GroundMotion, optional
         Horizontal ground acceleration.  None: free rocking from
         (``theta0``, ``dtheta0``).

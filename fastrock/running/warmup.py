@@ -23,11 +23,13 @@ def _example(name):
     from fastrock.model.bodies import FlexibleBody, RigidBlock
     from fastrock.model.foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation
     from fastrock.model.friction import Friction
+    from fastrock.model.rigid_body import RigidBody
     from fastrock.model.wall import Wall
     block = RigidBlock.rectangle(b=0.2, h=1.0)
     flex = FlexibleBody(alpha=0.2, p=2.0, omega_n_over_p=9.0, zeta=0.05)
     return {
         "rigid": (block, {}),
+        "rigid_body": (RigidBody(mass=1.0, inertia=0.1, b1=0.15, h1=1.0, b2=0.25, h2=1.0), {}),
         "rigid_wall": (block, {"wall": Wall(gap=0.01)}),
         "rigid_friction": (block, {"friction": Friction(0.3)}),
         "contact": (block, {"wall": Wall(gap=0.01), "friction": Friction(0.3)}),
@@ -100,7 +102,7 @@ def is_ready(kernel):
 #: First-use cost [s] of a model's two entry kernels with an empty cache, measured with
 #: ``fastrock warmup`` on this project's 2-core machine under a load of about 3 (docs:
 #: guide/install, "Compilation and the kernel cache"); a quiet machine takes about two thirds of it.
-TYPICAL_COMPILE_SECONDS = {"rigid": 34, "rigid_wall": 31, "rigid_friction": 33, "contact": 67,
+TYPICAL_COMPILE_SECONDS = {"rigid": 34, "rigid_body": 27, "rigid_wall": 31, "rigid_friction": 33, "contact": 67,
                            "flexible": 31, "flexible_friction": 43, "flexible_wall": 40, "flexible_flight": 52, "two_spring": 30, "switching": 30,
                            "linear_sdof": 29}
 
