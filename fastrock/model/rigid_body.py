@@ -200,7 +200,7 @@ class RigidBody:
 
     @property
     def uplift_acceleration2(self):
-        """g tan(alpha2) [m/s^2]: a_g < 0 with |a_g| above it tips the body onto pivot 2."""
+        """g tan(alpha2) [m/s^2]: a_g < 0 with ``|a_g|`` above it tips the body onto pivot 2."""
         return self.g * math.tan(self.alpha2)
 
     @property
