@@ -263,3 +263,15 @@ def test_mesh_errors_name_the_field(tmp_path):
         geo.mesh_section(good, axis=(0, 0, 1))
     with pytest.raises(ValueError, match="^path: no such file"):
         geo.mesh_section(tmp_path / "missing.obj")
+
+
+def test_long_outline_checked():
+    """A survey outline of 2000 points: simple as given, crossing once two points trade places."""
+    rng = np.random.default_rng(3)
+    ang = np.sort(rng.uniform(0, 2 * np.pi, 2000))
+    r = rng.uniform(0.8, 1.0, 2000)
+    P = np.column_stack([r * np.cos(ang), r * np.sin(ang)])
+    assert geo.polygon_properties(P).area > 0
+    P[[100, 1100]] = P[[1100, 100]]
+    with pytest.raises(ValueError, match="^vertices: the polygon crosses itself"):
+        geo.polygon_properties(P)

@@ -67,49 +67,51 @@ def orientation(P):
     return 1 if signed_area(P) > 0.0 else -1
 
 
-def _segments_meet(p1, p2, q1, q2, tol):
-    """Whether the closed segments p1p2 and q1q2 share a point (within tol)."""
-    def cross(o, a, b):
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+def _meets(a, b, C, D, tol):
+    """Which of the closed segments C[k]D[k] share a point with ab (within
+    tol, a length): a proper crossing, or an end point on the other segment."""
+    def cross(o, p, q):
+        return (p[..., 0] - o[..., 0]) * (q[..., 1] - o[..., 1]) - (p[..., 1] - o[..., 1]) * (q[..., 0] - o[..., 0])
 
-    def on_segment(a, b, c):
-        # c collinear with ab (within tol): inside the bounding box?
-        return (min(a[0], b[0]) - tol <= c[0] <= max(a[0], b[0]) + tol and
-                min(a[1], b[1]) - tol <= c[1] <= max(a[1], b[1]) + tol)
+    def on_segment(p, q, r):
+        # r collinear with pq (within tol): inside the bounding box?
+        return ((np.minimum(p[..., 0], q[..., 0]) - tol <= r[..., 0]) &
+                (r[..., 0] <= np.maximum(p[..., 0], q[..., 0]) + tol) &
+                (np.minimum(p[..., 1], q[..., 1]) - tol <= r[..., 1]) &
+                (r[..., 1] <= np.maximum(p[..., 1], q[..., 1]) + tol))
 
-    lp = math.hypot(p2[0] - p1[0], p2[1] - p1[1])
-    lq = math.hypot(q2[0] - q1[0], q2[1] - q1[1])
-    d1 = cross(q1, q2, p1)
-    d2 = cross(q1, q2, p2)
-    d3 = cross(p1, p2, q1)
-    d4 = cross(p1, p2, q2)
-    tq = tol * lq
-    tp = tol * lp
-    if ((d1 > tq and d2 < -tq) or (d1 < -tq and d2 > tq)) and \
-            ((d3 > tp and d4 < -tp) or (d3 < -tp and d4 > tp)):
-        return True
-    return ((abs(d1) <= tq and on_segment(q1, q2, p1)) or (abs(d2) <= tq and on_segment(q1, q2, p2)) or
-            (abs(d3) <= tp and on_segment(p1, p2, q1)) or (abs(d4) <= tp and on_segment(p1, p2, q2)))
+    A = np.broadcast_to(a, C.shape)
+    B = np.broadcast_to(b, C.shape)
+    tp = tol * math.hypot(b[0] - a[0], b[1] - a[1])
+    tq = tol * np.hypot(D[:, 0] - C[:, 0], D[:, 1] - C[:, 1])
+    d1, d2 = cross(C, D, A), cross(C, D, B)
+    d3, d4 = cross(A, B, C), cross(A, B, D)
+    proper = ((((d1 > tq) & (d2 < -tq)) | ((d1 < -tq) & (d2 > tq))) &
+              (((d3 > tp) & (d4 < -tp)) | ((d3 < -tp) & (d4 > tp))))
+    touch = (((np.abs(d1) <= tq) & on_segment(C, D, A)) | ((np.abs(d2) <= tq) & on_segment(C, D, B)) |
+             ((np.abs(d3) <= tp) & on_segment(A, B, C)) | ((np.abs(d4) <= tp) & on_segment(A, B, D)))
+    return proper | touch
 
 
 def first_crossing(P):
-    """The first pair of edge indices (i, j) whose edges meet, other than
-    neighbours at their shared vertex; None for a simple polygon.  O(n^2):
-    outlines have tens to hundreds of points."""
+    """The first pair of edge indices (i, j), i < j, whose edges meet other
+    than neighbours at their shared vertex; None for a simple polygon.
+    O(n^2) work, vectorised over j."""
     n = len(P)
     tol = 1e-12 * float(np.abs(P - P.mean(axis=0)).max())
+    Q = np.roll(P, -1, axis=0)             # edge k runs from P[k] to Q[k]
     for i in range(n):
-        a, b = P[i], P[(i + 1) % n]
-        for j in range(i + 1, n):
-            if j == i + 1 or (i == 0 and j == n - 1):
-                # neighbours share a vertex; they meet elsewhere only if one
-                # folds back along the other
-                u, w = (a - b, P[(j + 1) % n] - b) if j == i + 1 else (b - a, P[j] - a)
-                if abs(u[0] * w[1] - u[1] * w[0]) <= tol * math.hypot(*u) and np.dot(u, w) > 0:
-                    return i, j
-                continue
-            if _segments_meet(a, b, P[j], P[(j + 1) % n], tol):
-                return i, j
+        a, b = P[i], Q[i]
+        # the next edge shares b; it meets edge i elsewhere only if it folds back along it
+        c = Q[(i + 1) % n]
+        u, w = a - b, c - b
+        if abs(u[0] * w[1] - u[1] * w[0]) <= tol * math.hypot(*u) and np.dot(u, w) > 0:
+            return (i, i + 1) if i + 1 < n else (0, n - 1)
+        j = np.arange(i + 2, n - 1 if i == 0 else n)
+        if j.size:
+            hit = np.flatnonzero(_meets(a, b, P[j], Q[j], tol))
+            if hit.size:
+                return i, int(j[hit[0]])
     return None
 
 
