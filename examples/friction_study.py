@@ -33,11 +33,22 @@ Writes to OUT (default ``docs/``); the maps (a)-(d) use DEFAULT_LIFT_OFF:
 * ``friction_flight_vs_hold.png`` (f) cells whose outcome differs between "flight" and "hold"
 * ``friction_summary.csv``     outcome counts and areas per mu and lift-off rule
 
-What it shows (80 x 80; README, "Friction study"): under "hold", mu_s = 0.8 agrees with the
+The committed figures (a), (c) and (e), from the earlier "hold" run of 80 x 80:
+
+.. image:: /friction_spectra.png
+   :alt: overturning spectra for each mu
+
+.. image:: /friction_boundaries.png
+   :alt: overturning boundaries of every mu
+
+.. image:: /friction_liftoff.png
+   :alt: lift-off maps
+
+What it shows (80 x 80; docs: validation/reproductions, friction): under "hold", mu_s = 0.8 agrees with the
 classic model on 99.1 % of the cells and mode 2 is unchanged for mu_s >= 0.5, but lower
 friction does not lower the vulnerability (overturned 44.9 % at mu = inf, 45.8 % at 0.8,
 47.1 % at 0.4); every outcome that changes is in a run where the pivot needs tension (N < 0).
-With flight, those runs fly instead (``summarize`` and the README give the numbers).
+With flight, those runs fly instead (``summarize`` and the docs page give the numbers).
 
 Usage: ``python examples/friction_study.py [--n 80] [--out docs] [--tables DIR [--reuse]]
 [--lift-off flight|hold]`` (80 x 80: about 8 minutes on 2 cores; ``--reuse`` redraws from the
