@@ -40,7 +40,10 @@ class RigidBody:
     symmetric: every model runs it as its equivalent :class:`RigidBlock`
     (:meth:`to_block`).  An asymmetric body runs in the two-sided rocking
     model (``simulate``, ``overturning_spectrum``); walls, friction, flight
-    and foundations refuse it so far.
+    and foundations refuse it so far.  Its early decisions (``early_exit``)
+    hold per side: a run stops as safe once the energy is below the barrier
+    of both the side it rocks on next and the other side after the impact,
+    and a fall past alpha_k completes in closed form on that side.
 
     Parameters
     ----------
