@@ -239,7 +239,7 @@ def test_inert_friction_cost():
 
 
 def test_inf_friction_scene_never_imports_the_friction_kernel():
-    code = ("import sys, math, fastrock as fr\nfrom fastrock.scene import Scene\n"
+    code = ("import sys, math, fastrock as fr\nfrom fastrock.running.scene import Scene\n"
             "b = fr.RigidBlock.rectangle(0.25, 1.0)\n"
             "Scene(b, excitation=fr.Pulse(0.3, 1.0), friction=fr.Friction(math.inf)).run()\n"
             "print('fastrock.kernels.friction' in sys.modules)\n")

@@ -13,7 +13,7 @@ PROBE = textwrap.dedent("""
     import json, sys
     import numba
     import fastrock as fr
-    from fastrock.scene import Scene
+    from fastrock.running.scene import Scene
 
     def compiled():
         out = {}

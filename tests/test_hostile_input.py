@@ -64,8 +64,9 @@ def no_kernel_no_hang(monkeypatch):
                      "analyses.spectrum", "analyses.rocking_spectrum.engine")}
     for m in ("running.sweep", "running.simulate", "running.foundation", "studies.worker"):
         monkeypatch.setattr(mod[m], "call_kernel", _refuse)
-    for m in ("running.sweep", "analyses.spectrum", "analyses.rocking_spectrum.engine"):
+    for m in ("running.sweep", "analyses.rocking_spectrum.engine"):
         monkeypatch.setattr(mod[m], "run_sweep", _refuse)
+    monkeypatch.setattr(mod["analyses.spectrum"], "run_chunks", _refuse)
 
     def alarm(signum, frame):
         raise Hang(f"no answer within {HANG_SECONDS} s")

@@ -10,7 +10,7 @@ from fastrock.model.ground import CLOSED_FORM_MODELS, GROUNDED_MODELS, as_ground
 from fastrock.running import registry
 from fastrock.running.outcomes import outcome_of, status_of, warn_unstable
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
-from fastrock.running.sweep import run_sweep
+from fastrock.running.sweep import run_chunks
 from fastrock.kernels import layout as L
 
 SPECTRUM_COLUMNS = """\
@@ -193,55 +193,90 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     omega = F * body.p
     amp = A * body.g * np.tan(body.alpha)
     dur = (np.pi if pulse == "half-sine" else 2 * np.pi) / omega
-    HDR = np.zeros((n, L.N_EXC))
-    HDR[:, L.X_KIND] = kind
-    HDR[:, L.X_AMP] = amp
-    HDR[:, L.X_OMEGA] = omega
-    HDR[:, L.X_SIGN] = S
-    HDR[:, L.X_DUR] = dur
+    hdr0 = np.zeros(L.N_EXC)            # what every run shares: the vertical and slope blocks
     smp = np.zeros(1)
     t_vertical = 0.0
     if vertical is not None:
         vhdr, smp = X.to_header(body, None, vertical)
-        HDR[:, L.V_CHANNEL:] = vhdr[L.V_CHANNEL:]
+        hdr0[L.V_CHANNEL:] = vhdr[L.V_CHANNEL:]
         t_vertical = X.end_time(body, None, vertical)
     if ground is not None:
-        ground.fill_header(HDR[0], body.g)
-        HDR[:, L.S_BLOCK:] = HDR[0, L.S_BLOCK:]
+        ground.fill_header(hdr0, body.g)
         if spec.name in GROUNDED_MODELS and vertical is None:
             ground.check_lift_off(body, float(amp.max()))
     solver.check_fixed_steps(V.run_time("t_after", max(t_longest, t_vertical) + t_after,
                                         "the longest run (pulse plus t_after)"), "the longest run")
     opt = solver.options(0.0, early_exit)
-    OPT = np.tile(opt, (n, 1))
-    OPT[:, L.O_T_END] = np.maximum(dur, t_vertical) + t_after
-    PAR = np.tile(spec.par, (n, 1))
     if foundation is not None:
         from fastrock.model.foundation import block_inertia
-        Y0 = np.tile(foundation.initial_state(block_inertia(body, mass), 0.0, 0.0), (n, 1))
+        y0 = np.asarray(foundation.initial_state(block_inertia(body, mass), 0.0, 0.0), float)
     else:
-        Y0 = np.zeros((n, spec.n_state))
-    status, MET, YF, done = run_sweep(spec.sweep, Y0, PAR, HDR, smp, OPT, chunk_size, progress,
-                                      label="runs", model=spec.name)
-    df = pd.DataFrame({
-        "amplitude_ratio": A, "frequency_ratio": F, "sign": S.astype(int),
-        "amplitude": amp, "amplitude_g": amp / body.g, "frequency_hz": omega / (2 * np.pi),
-    })
-    df = _add_results(df, status, MET, body, wall, friction if spec.friction else None)
-    if spec.model.flight or spec.name == "contact":
-        from fastrock.running.result import flight_metrics
-        for k, v in flight_metrics(MET).items():
-            df[k] = v
-    if foundation is not None:
-        df["time_rocking"] = MET[:, L.M_T_ROCK]
-        df["time_contact"] = MET[:, L.M_T_CONTACT]
-    df["theta_end"] = YF[:, spec.theta_index]
-    df["theta_dot_end"] = YF[:, spec.theta_index + 1]
-    overturned = (status == L.OVERTURN_MODE1) | (status == L.OVERTURN_MODE2)
-    df["side"] = np.where(overturned, np.sign(YF[:, spec.theta_index]), 0.0).astype(int)
-    df = df.iloc[:done].reset_index(drop=True)
-    if solver.dt:
-        warn_unstable(status[:done], MET[:done], solver.dt)
+        y0 = np.zeros(spec.n_state)
+
+    # Inputs and results one chunk at a time: a 1000 x 1000 grid never holds
+    # the kernels' inputs or their full metric rows (N_MET floats per run).
+    def inputs(start, stop):
+        sl = slice(start, stop)
+        HDR = np.tile(hdr0, (stop - start, 1))
+        HDR[:, L.X_KIND] = kind
+        HDR[:, L.X_AMP] = amp[sl]
+        HDR[:, L.X_OMEGA] = omega[sl]
+        HDR[:, L.X_SIGN] = S[sl]
+        HDR[:, L.X_DUR] = dur[sl]
+        OPT = np.tile(opt, (stop - start, 1))
+        OPT[:, L.O_T_END] = np.maximum(dur[sl], t_vertical) + t_after
+        return np.tile(y0, (stop - start, 1)), np.tile(spec.par, (stop - start, 1)), HDR, OPT
+
+    columns = {}
+    unstable = []
+
+    def table(sl, st, met, yf):
+        part = pd.DataFrame({
+            "amplitude_ratio": A[sl], "frequency_ratio": F[sl], "sign": S[sl].astype(int),
+            "amplitude": amp[sl], "amplitude_g": amp[sl] / body.g, "frequency_hz": omega[sl] / (2 * np.pi),
+        })
+        part = _add_results(part, st, met, body, wall, friction if spec.friction else None)
+        if spec.model.flight or spec.name == "contact":
+            from fastrock.running.result import flight_metrics
+            for k, v in flight_metrics(met).items():
+                part[k] = v
+        if foundation is not None:
+            part["time_rocking"] = met[:, L.M_T_ROCK]
+            part["time_contact"] = met[:, L.M_T_CONTACT]
+        part["theta_end"] = yf[:, spec.theta_index]
+        part["theta_dot_end"] = yf[:, spec.theta_index + 1]
+        overturned = (st == L.OVERTURN_MODE1) | (st == L.OVERTURN_MODE2)
+        part["side"] = np.where(overturned, np.sign(yf[:, spec.theta_index]), 0.0).astype(int)
+        return part
+
+    def consume(start, st, met, yf):
+        part = table(slice(start, start + st.size), st, met, yf)
+        if not columns:
+            for k in part.columns:
+                dtype = part[k].to_numpy().dtype
+                columns[k] = np.empty(n, dtype=dtype if dtype.kind in "biuf" else object)
+        for k in part.columns:
+            columns[k][start:start + st.size] = part[k].to_numpy()
+        if solver.dt and (st == L.FAIL_UNSTABLE).any():
+            bad = np.flatnonzero(st == L.FAIL_UNSTABLE)
+            unstable.append((start + bad, met[bad]))
+
+    done = run_chunks(spec.sweep, n, inputs, smp, consume, chunk_size, progress, label="runs",
+                      model=spec.name)
+    if not columns:                   # interrupted before the first chunk finished
+        empty = np.empty(0)
+        df = table(slice(0, 0), empty.astype(np.int64), np.empty((0, L.N_MET)), np.empty((0, spec.n_state)))
+    else:
+        df = pd.DataFrame({k: v[:done] for k, v in columns.items()}, copy=False)
+    columns.clear()
+    if unstable:
+        # the unstable rows' suggested steps, placed as warn_unstable reads them
+        rows = np.concatenate([u[0] for u in unstable])
+        status = np.full(done, L.RUNNING, np.int64)
+        status[rows] = L.FAIL_UNSTABLE
+        MET = np.full((done, L.N_MET), np.nan)
+        MET[rows] = np.concatenate([u[1] for u in unstable])
+        warn_unstable(status, MET, solver.dt)
     df.attrs.update(interrupted=done < n, kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e,
                     pulse=pulse, solver=solver.name, amplitude_unit=amplitude_unit,
                     frequency_unit=frequency_unit, slope=ground.slope if ground is not None else 0.0)

@@ -119,6 +119,32 @@ def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=Tr
     status = np.full(n, L.RUNNING, dtype=np.int64)
     MET = np.full((n, L.N_MET), np.nan)
     YF = np.full(Y0.shape, np.nan)
+
+    def inputs(start, stop):
+        sl = slice(start, stop)
+        return (np.ascontiguousarray(Y0[sl]), np.ascontiguousarray(PAR[sl]), np.ascontiguousarray(HDR[sl]),
+                np.array(OPT[sl], order="C"))
+
+    def consume(start, st, met, yf):
+        stop = start + st.size
+        status[start:stop] = st
+        MET[start:stop] = met
+        YF[start:stop] = yf
+
+    done = run_chunks(sweep_kernel, n, inputs, smp, consume, chunk_size, progress, label, model,
+                      reraise_when_complete)
+    return status, MET, YF, done
+
+
+def run_chunks(sweep_kernel, n, inputs, smp, consume, chunk_size=None, progress=True, label="runs",
+               model=None, reraise_when_complete=False):
+    """Run a sweep kernel over n rows, one chunk at a time, without holding
+    the inputs or the kernel's outputs of the whole sweep: ``inputs(start,
+    stop)`` builds the chunk's (Y0, PAR, HDR, OPT) (C-contiguous; OPT a copy,
+    whose abort flag Ctrl-C sets) and ``consume(start, status, MET, YF)``
+    keeps what the caller needs of the finished rows.  Returns the number
+    of rows finished (all of them, or the rows before a Ctrl-C: see
+    :func:`run_sweep`)."""
     if chunk_size is None:
         chunk_size = max(256, min(4096, n // 20 + 1))
     else:
@@ -136,33 +162,28 @@ def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=Tr
     try:
         while done < n:
             stop = min(n, done + chunk_size)
-            sl = slice(done, stop)
+            y0, par, hdr, opt = inputs(done, stop)
             st = np.empty(stop - done, np.int64)
             met = np.empty((stop - done, L.N_MET))
-            yf = np.empty((stop - done, Y0.shape[1]))
-            opt = np.array(OPT[sl], order="C")
+            yf = np.empty(y0.shape)
             try:
-                call_kernel(sweep_kernel, np.ascontiguousarray(Y0[sl]), np.ascontiguousarray(PAR[sl]),
-                            np.ascontiguousarray(HDR[sl]), smp, opt, st, met, yf, opt=opt)
+                call_kernel(sweep_kernel, y0, par, hdr, smp, opt, st, met, yf, opt=opt)
             except KeyboardInterrupt:
                 # keep the chunk's runs that finished before the first one stopped
                 k = int(np.argmax(st == L.FAIL_INTERRUPTED)) if (st == L.FAIL_INTERRUPTED).any() else st.size
-                status[done:done + k] = st[:k]
-                MET[done:done + k] = met[:k]
-                YF[done:done + k] = yf[:k]
+                if k:
+                    consume(done, st[:k], met[:k], yf[:k])
                 done += k
                 raise
-            status[sl] = st
-            MET[sl] = met
-            YF[sl] = yf
-            done = stop
-            if first_use and sl.start == 0:
+            consume(done, st, met, yf)
+            if first_use and done == 0:
                 bar.stage("")
-            bar.update(stop - sl.start)
+            bar.update(stop - done)
+            done = stop
     except KeyboardInterrupt:
         if done == n and reraise_when_complete:
             raise
-        warnings.warn(f"interrupted: returning the {done} of {n} runs that finished", stacklevel=3)
+        warnings.warn(f"interrupted: returning the {done} of {n} runs that finished", stacklevel=4)
     finally:
         bar.close()
-    return status, MET, YF, done
+    return done
