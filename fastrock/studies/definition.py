@@ -17,6 +17,7 @@ import numpy as np
 from fastrock import _validate as V
 from fastrock.running import registry
 from fastrock.model.bodies import FlexibleBody, RigidBlock
+from fastrock.model.rigid_body import RigidBody
 from fastrock.constants import G_STANDARD
 from fastrock.io.ground_motion import GroundMotion
 from fastrock.io.default_records import load_default_record
@@ -53,7 +54,9 @@ class Study:
         ``"default"`` is the packaged El Centro record), :class:`GroundMotion`
         objects, or dicts ``{"file": ..., "unit": ..., "dt": ...}`` (also
         ``"column"`` and ``"decimal"``, as in :func:`fastrock.read_record`).
-    bodies : sequence of RigidBlock or FlexibleBody
+    bodies : sequence of RigidBlock, RigidBody or FlexibleBody
+        An asymmetric RigidBody runs the two-sided rocking model; its
+        ``alpha``, ``p`` columns are those of its smaller side.
     levels : sequence of float
         Intensity levels, > 0, in ``measure``.
     measure : str
@@ -262,9 +265,11 @@ class Study:
             raise StudyError("bodies is empty")
         bodies = list(self.bodies)
         for i, b in enumerate(bodies):
-            if not isinstance(b, (RigidBlock, FlexibleBody)):
-                raise StudyError(f"bodies[{i}] must be a RigidBlock or FlexibleBody, "
+            if not isinstance(b, (RigidBlock, FlexibleBody, RigidBody)):
+                raise StudyError(f"bodies[{i}] must be a RigidBlock, RigidBody or FlexibleBody, "
                                  f"got {type(b).__name__}")
+        # a symmetric RigidBody runs as its RigidBlock, as in simulate and spectra
+        bodies = [registry.model_body(b) for b in bodies]
         names, walls, effects = _variants(self.variants)
         solver = self.solver
         if solver is None:
@@ -492,6 +497,8 @@ def _body_labels(bodies):
     for b in bodies:
         if isinstance(b, FlexibleBody):
             s = f"flexible alpha={b.alpha:.4g} p={b.p:.4g} wn/p={b.omega_n_over_p:.4g}"
+        elif isinstance(b, RigidBody):
+            s = f"b1={b.b1:.4g} h1={b.h1:.4g} b2={b.b2:.4g} h2={b.h2:.4g}"
         elif b.b is not None and b.h is not None:
             s = f"b={b.b:.4g} h={b.h:.4g}"
         else:

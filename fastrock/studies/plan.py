@@ -37,6 +37,7 @@ pga_over_g_tan_alpha  PGA / (g tan alpha), g of the body [-]
 omega_p_over_p        (2 pi / Tm) / p, Tm as pulse-period proxy [-]
 outcome, status, status_code   coarse class, refined status and kernel code
 overturned            outcome in (mode1, mode2)
+side                  +1 / -1: the side it overturned to (theta > 0 / < 0), 0 if it did not
 max_rotation_ratio    max |theta| / alpha [-]
 impacts, wall_impacts, time_uplift [s], time_overturn [s], time_end [s],
 nfev, steps, rejected_steps
@@ -160,7 +161,7 @@ class Plan:
                 if spec0.name in CLOSED_FORM_MODELS:     # closed forms of level ground
                     OPT[j, L.O_EARLY_EXIT] = 0.0
         return {"chunk": chunk.id, "module": spec0.module, "kernel": spec0.name,
-                "rows": rows.astype(np.int64),
+                "rows": rows.astype(np.int64), "theta_index": int(spec0.theta_index),
                 "Y0": np.array([prep.y0s[self.body[i], self.var[i]] for i in rows], float).reshape(m, -1),
                 "PAR": PAR, "HDR": HDR, "smp": smp, "OPT": OPT, "numba_threads": 0}
 
@@ -174,6 +175,7 @@ class Plan:
             raise StudyError(f"chunk {chunk.id}: the worker returned other rows than asked")
         status = result["status"][order]
         MET = result["met"][order]
+        theta_end = result["theta_end"][order] if "theta_end" in result else np.full(order.size, np.nan)
         m = rows.size
         R, B, W = self.rec[rows], self.body[rows], self.var[rows]
         alpha = self.body_cols["alpha"][B]
@@ -201,6 +203,8 @@ class Plan:
             "status": np.array([status_of(c) for c in status], dtype=object),
             "status_code": status.astype(np.int64),
             "overturned": np.isin(outcome, COLLAPSE_OUTCOMES),
+            "side": np.where((status == L.OVERTURN_MODE1) | (status == L.OVERTURN_MODE2),
+                             np.sign(np.nan_to_num(theta_end)), 0).astype(np.int64),
             "max_rotation_ratio": MET[:, L.M_MAX_ABS_THETA] / alpha,
             "impacts": MET[:, L.M_IMPACTS], "wall_impacts": MET[:, L.M_WALL_IMPACTS],
             "time_uplift": MET[:, L.M_T_UPLIFT], "time_overturn": MET[:, L.M_T_OVER],

@@ -58,8 +58,11 @@ def run_chunk(payload):
                     np.ascontiguousarray(payload["HDR"], float), np.ascontiguousarray(payload["smp"], float),
                     opt, status, met, yf, opt=opt)
         seconds = time.perf_counter() - t0
-    return {"rows": np.asarray(payload["rows"], np.int64), "status": status, "met": met,
-            "seconds": seconds, "pid": os.getpid()}
+    out = {"rows": np.asarray(payload["rows"], np.int64), "status": status, "met": met,
+           "seconds": seconds, "pid": os.getpid()}
+    if "theta_index" in payload:
+        out["theta_end"] = yf[:, int(payload["theta_index"])].copy()
+    return out
 
 
 def worker_info():
