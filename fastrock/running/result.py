@@ -15,6 +15,27 @@ from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import C_LOG_DROPPED
 
 
+class _BuiltOnFirstUse:
+    """A field that may be given as a zero-argument function: the table is built from the
+    kernel's arrays the first time it is read (a run whose history nobody reads pays nothing
+    for its DataFrames)."""
+
+    def __set_name__(self, owner, name):
+        self.slot = "_" + name
+
+    def __get__(self, obj, objtype=None):
+        if obj is None:
+            raise AttributeError(self.slot[1:])      # no class-level default (dataclass fields)
+        value = obj.__dict__[self.slot]
+        if callable(value):
+            value = value()
+            obj.__dict__[self.slot] = value
+        return value
+
+    def __set__(self, obj, value):
+        obj.__dict__[self.slot] = value
+
+
 #: Figure makers by name, filled by fastrock.plotting on import (fastrock's __init__ imports
 #: it): running sits below plotting and must not import it.
 PLOTTERS = {}
@@ -111,8 +132,8 @@ class SimulationResult:
         The sloping ground of the run (None: level).
     """
 
-    history: pd.DataFrame
-    events: pd.DataFrame
+    history: pd.DataFrame = _BuiltOnFirstUse()
+    events: pd.DataFrame = _BuiltOnFirstUse()
     outcome: str
     status: str
     status_code: int

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import warnings
+from functools import partial
 
 import numpy as np
 import pandas as pd
@@ -19,6 +20,39 @@ from fastrock.kernels.config import DEBUG
 from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
 from fastrock.running.result import (SimulationResult, ground_at, events_frame, flight_metrics,
     friction_metrics, metrics_dict, run_inputs)
+
+
+def _history(hist, hdr, smp, spec, body):
+    """The history table of a run from its kernel output rows."""
+    t, y, d = hist
+    level = hdr.copy()
+    level[L.S_ON] = 0.0         # the channels as given, not their slope-frame parts
+    ag, av = ground_at(t, level, smp)
+    ti = spec.theta_index
+    th = y[:, ti]
+    history = pd.DataFrame({
+        "t": t, "a_g": ag, "a_v": av, "theta": th, "theta_dot": y[:, ti + 1],
+        "theta_ratio": th / body.alpha,
+        "contact": [MODE_NAMES.get(int(m), str(m)) for m in d[:, 0]],
+        "pivot": np.where(d[:, 0] == L.MODE_REST, 0, d[:, 1]),
+    })
+    if spec.flexible:
+        u, du = y[:, 0], y[:, 1]
+        wn = body.omega_n
+        history["u"] = u
+        history["u_dot"] = du
+        history["u_ratio"] = u / body.uplift_deformation
+        # elastic column force and the moment it makes at the base
+        history["base_shear"] = body.mass * (wn * wn * u + 2 * body.zeta * wn * du)
+        history["overturning_moment"] = history["base_shear"] * body.H
+    if spec.friction:
+        history["d"] = y[:, spec.slide_index]
+        history["d_dot"] = y[:, spec.slide_index + 1]
+    if "z" in spec.state_names:     # height of the base above the ground (free flight)
+        iz = spec.state_names.index("z")
+        history["z"] = y[:, iz]
+        history["z_dot"] = y[:, iz + 1]
+    return history
 
 
 def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, foundation=None, ground=None,
@@ -135,35 +169,9 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
             continue
         break
     nh = int(cnt[C_NHIST])
-    t = hist_t[:nh]
-    level = hdr.copy()
-    level[L.S_ON] = 0.0         # the channels as given, not their slope-frame parts
-    ag, av = ground_at(t, level, smp)
-    ti = spec.theta_index
-    th = hist_y[:nh, ti]
-    history = pd.DataFrame({
-        "t": t, "a_g": ag, "a_v": av, "theta": th, "theta_dot": hist_y[:nh, ti + 1],
-        "theta_ratio": th / body.alpha,
-        "contact": [MODE_NAMES.get(int(m), str(m)) for m in hist_d[:nh, 0]],
-        "pivot": np.where(hist_d[:nh, 0] == L.MODE_REST, 0, hist_d[:nh, 1]),
-    })
-    if spec.flexible:
-        u, du = hist_y[:nh, 0], hist_y[:nh, 1]
-        wn = body.omega_n
-        history["u"] = u
-        history["u_dot"] = du
-        history["u_ratio"] = u / body.uplift_deformation
-        # elastic column force and the moment it makes at the base
-        history["base_shear"] = body.mass * (wn * wn * u + 2 * body.zeta * wn * du)
-        history["overturning_moment"] = history["base_shear"] * body.H
-    if spec.friction:
-        history["d"] = hist_y[:nh, spec.slide_index]
-        history["d_dot"] = hist_y[:nh, spec.slide_index + 1]
-    if "z" in spec.state_names:     # height of the base above the ground (free flight)
-        iz = spec.state_names.index("z")
-        history["z"] = hist_y[:nh, iz]
-        history["z_dot"] = hist_y[:nh, iz + 1]
-    events = events_frame(log[:int(cnt[C_NLOG])], cnt)
+    hist = (hist_t[:nh].copy(), hist_y[:nh].copy(), hist_d[:nh].copy())
+    history = partial(_history, hist, hdr, smp, spec, body)       # built when first read
+    events = partial(events_frame, log[:int(cnt[C_NLOG])].copy(), cnt)
     metrics = metrics_dict(met, body)
     outcome = outcome_of(code)
     if spec.friction:
