@@ -462,7 +462,7 @@ def fig_liftoff(tables, amps, freqs, path):
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.8), sharey=True, constrained_layout=True)
     for ax, mu in zip(axes, shown):
         df = tables[(mu, "stop")]
-        plot_spectrum(df, ax=ax, legend=False, title=mu_label(mu) + r', lift_off="stop" (physics.md 4.6)')
+        plot_spectrum(df, ax=ax, legend=False, title=mu_label(mu) + r', lift_off="stop"')
         boundary(ax, overturn_matrix(tables[(mu, "hold")], amps, freqs), freqs, amps, "k", "", ls="--", lw=1)
     present = [k for k in OUTCOME_COLORS if any((tables[(m, "stop")].outcome == k).any() for m in shown)]
     from matplotlib.lines import Line2D

@@ -70,7 +70,8 @@ def _add_body_options(p):
     g.add_argument("--b", type=float, help="half-width [m] (with --h: rectangle, overrides --alpha/--p; default: use --alpha/--p)")
     g.add_argument("--h", type=float, help="half-height [m] (with --b; default: use --alpha/--p)")
     g.add_argument("--e", type=float, help="ground impact restitution e [-] (default: Housner, 1 - 1.5 sin^2 alpha)")
-    fb = p.add_argument_group("flexible body (elastic column on a rocking base, physics.md 3)")
+    fb = p.add_argument_group("flexible body (elastic column on a rocking base; docs, theory: "
+                              "'Flexible rocking body')")
     fb.add_argument("--omega-n-over-p", type=float,
                     help="column frequency ratio omega_n/p [-]: a flexible body instead of a rigid block "
                          "(default: a rigid block)")

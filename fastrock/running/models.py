@@ -67,10 +67,11 @@ def flexible_friction_par(body: FlexibleBody, friction):
     from fastrock.kernels import layout as K
     if body.impact != "full-contact":
         raise ValueError("friction= with a FlexibleBody needs impact='full-contact' (the slide-rock impact "
-                         "rule of physics.md 4.4)")
+                         "rule of the docs' theory page 'Flexible body with a sliding base')")
     if body.base_mass(sliding=True) <= 0.0:
         raise ValueError("base_mass_ratio must be > 0 with sliding on: with a massless base the sliding "
-                         "problem is a differential-algebraic system (physics.md 4.4); use e.g. 0.1")
+                         "problem is a differential-algebraic system (docs, theory: 'Flexible body with a "
+                         "sliding base', 'Why the base needs a mass'); use e.g. 0.1")
     par = flexible_par(body, sliding=True, n_par=K.N_PAR_FLEXIBLE_FRICTION)
     par[K.F_MU_S] = friction.mu_s
     par[K.F_MU_K] = friction.mu_k

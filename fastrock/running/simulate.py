@@ -190,7 +190,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     if metrics.get("energy_gains", 0) > 0:
         if getattr(body, "impact", None) == "pivot-switch":
             warnings.warn(f"the pivot-switch (I1) impact map created energy at {metrics['energy_gains']} "
-                          "impact(s) in this run (see README, flexible bodies)", stacklevel=2)
+                          "impact(s) in this run (see the docs' user guide, 'Flexible bodies', 'Impact maps')",
+                          stacklevel=2)
         else:
             warnings.warn(f"{metrics['energy_gains']} impact(s) raised the kinetic energy (FASTROCK_DEBUG "
                           "check): a defect, please report it with this run", RuntimeWarning, stacklevel=2)
