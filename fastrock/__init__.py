@@ -44,7 +44,7 @@ from fastrock.running.simulate import simulate
 from fastrock.running.batch import run_batch
 from fastrock.running.foundation import simulate_foundation
 from fastrock.running.scene import Scene
-from fastrock.analyses.spectrum import overturning_spectrum
+from fastrock.analyses.spectrum import load_spectrum, overturning_spectrum
 from fastrock.analyses.freerocking.fitting import FreeRockingFit, fit_free_rocking
 from fastrock.analyses.freerocking.half_cycles import half_cycles
 # the foundation models register their predictors with fit_free_rocking on import
@@ -67,7 +67,7 @@ __all__ = [
     # running
     "Solver", "simulate", "run_batch", "SimulationResult", "simulate_foundation",
     # analyses and studies
-    "overturning_spectrum", "rocking_spectrum", "half_cycles", "fit_free_rocking", "FreeRockingFit",
+    "overturning_spectrum", "load_spectrum", "rocking_spectrum", "half_cycles", "fit_free_rocking", "FreeRockingFit",
     "Study", "run_study", "fit_fragility", "FragilityFit", "plot_fragility", "plot_snapshots",
 ]
 __version__ = VERSION

@@ -85,7 +85,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
                          solver=None,
                          rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
                          early_exit=True, chunk_size=None, progress=True, boundary_check=False,
-                         amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p", kind=None):
+                         amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p", kind=None, out=None):
     """Overturning spectrum of a body under pulses, in parallel.
 
     Parameters
@@ -134,6 +134,13 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     progress : bool
         Progress bar on stderr for long sweeps.  Ctrl-C returns the finished
         rows (``df.attrs["interrupted"]`` is True).
+    out : str or Path, optional
+        A folder to stream the table to, chunk by chunk, as Parquet files
+        (``part-*.parquet``, each with the grid's ``row`` ids, and
+        ``spectrum.json`` describing the call): for grids whose table does
+        not fit in memory.  Calling again with the same arguments and
+        ``out`` resumes: only the rows no file holds yet are run.  Returns
+        the folder; :func:`load_spectrum` reads it back as one table.
     boundary_check : bool
         Run the grid a second time with the tolerance (or the fixed step)
         halved and add the column ``boundary``: True where the outcome
@@ -216,16 +223,18 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     # Inputs and results one chunk at a time: a 1000 x 1000 grid never holds
     # the kernels' inputs or their full metric rows (N_MET floats per run).
     def inputs(start, stop):
-        sl = slice(start, stop)
-        HDR = np.tile(hdr0, (stop - start, 1))
+        return inputs_at(slice(start, stop), stop - start)
+
+    def inputs_at(sl, m):
+        HDR = np.tile(hdr0, (m, 1))
         HDR[:, L.X_KIND] = kind
         HDR[:, L.X_AMP] = amp[sl]
         HDR[:, L.X_OMEGA] = omega[sl]
         HDR[:, L.X_SIGN] = S[sl]
         HDR[:, L.X_DUR] = dur[sl]
-        OPT = np.tile(opt, (stop - start, 1))
+        OPT = np.tile(opt, (m, 1))
         OPT[:, L.O_T_END] = np.maximum(dur[sl], t_vertical) + t_after
-        return np.tile(y0, (stop - start, 1)), np.tile(spec.par, (stop - start, 1)), HDR, OPT
+        return np.tile(y0, (m, 1)), np.tile(spec.par, (m, 1)), HDR, OPT
 
     columns = {}
     unstable = []
@@ -261,6 +270,19 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
             bad = np.flatnonzero(st == L.FAIL_UNSTABLE)
             unstable.append((start + bad, met[bad]))
 
+    attrs = dict(kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e, pulse=pulse, solver=solver.name,
+                 amplitude_unit=amplitude_unit, frequency_unit=frequency_unit,
+                 slope=ground.slope if ground is not None else 0.0)
+    if spec.name == "rigid_body":
+        attrs.update(alpha1=body.alpha1, alpha2=body.alpha2, p1=body.p1, p2=body.p2, e12=body.e12,
+                     e21=body.e21, ratio_side=body.smaller_side)
+    if out is not None:
+        if boundary_check:
+            raise ValueError("out: boundary_check does not stream to files; run it without out")
+        call = dict(body=body, amplitude_ratios=amps, frequency_ratios=freqs, signs=signs, pulse=pulse,
+                    wall=wall, friction=friction, foundation=foundation, ground=ground, mass=mass,
+                    vertical=vertical, solver=solver, t_after=t_after, early_exit=early_exit)
+        return _stream(out, call, attrs, n, spec, inputs_at, table, smp, chunk_size, progress)
     done = run_chunks(spec.sweep, n, inputs, smp, consume, chunk_size, progress, label="runs",
                       model=spec.name)
     if not columns:                   # interrupted before the first chunk finished
@@ -277,12 +299,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         MET = np.full((done, L.N_MET), np.nan)
         MET[rows] = np.concatenate([u[1] for u in unstable])
         warn_unstable(status, MET, solver.dt)
-    df.attrs.update(interrupted=done < n, kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e,
-                    pulse=pulse, solver=solver.name, amplitude_unit=amplitude_unit,
-                    frequency_unit=frequency_unit, slope=ground.slope if ground is not None else 0.0)
-    if spec.name == "rigid_body":
-        df.attrs.update(alpha1=body.alpha1, alpha2=body.alpha2, p1=body.p1, p2=body.p2, e12=body.e12,
-                        e21=body.e21, ratio_side=body.smaller_side)
+    df.attrs.update(interrupted=done < n, **attrs)
     if boundary_check:
         import dataclasses
         half = (dataclasses.replace(solver, dt=solver.dt / 2) if solver.dt else
@@ -337,4 +354,90 @@ def _add_results(df, status, MET, body, wall=None, friction=None):
     df["time_overturn"] = MET[:, L.M_T_OVER]
     df["time_end"] = MET[:, L.M_T_FINAL]
     df["nfev"] = np.nan_to_num(MET[:, L.M_NFEV]).astype(np.int64)
+    return df
+
+
+def _fingerprint(obj):
+    """A stable text of a call's arguments (arrays by their SHA-256), so that
+    a streamed spectrum resumes only into a folder of the same call."""
+    import dataclasses
+    import hashlib
+    if isinstance(obj, np.ndarray):
+        return f"array{obj.shape}:{hashlib.sha256(np.ascontiguousarray(obj).tobytes()).hexdigest()}"
+    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
+        return type(obj).__name__ + "(" + ",".join(f"{f.name}={_fingerprint(getattr(obj, f.name))}"
+                                                   for f in dataclasses.fields(obj)) + ")"
+    if isinstance(obj, dict):
+        return "{" + ",".join(f"{k}:{_fingerprint(v)}" for k, v in sorted(obj.items())) + "}"
+    if isinstance(obj, (list, tuple)):
+        return "[" + ",".join(_fingerprint(v) for v in obj) + "]"
+    if isinstance(obj, (float, np.floating)):
+        return repr(float(obj))
+    return repr(obj)
+
+
+def _stream(out, call, attrs, n, spec, inputs_at, table, smp, chunk_size, progress):
+    """Run the rows no Parquet part in ``out`` holds yet, writing one part per chunk."""
+    import hashlib
+    import json
+    import os
+    import uuid
+    from pathlib import Path
+    from fastrock.constants import VERSION
+    folder = Path(out)
+    if folder.exists() and not folder.is_dir():
+        raise ValueError(f"out: {folder} exists and is not a folder")
+    folder.mkdir(parents=True, exist_ok=True)
+    key = hashlib.sha256((VERSION + _fingerprint(call)).encode()).hexdigest()
+    manifest = folder / "spectrum.json"
+    if manifest.exists():
+        try:
+            saved = json.loads(manifest.read_text())
+        except ValueError:
+            raise ValueError(f"out: {manifest} is not a spectrum manifest (not valid JSON)") from None
+        if saved.get("key") != key:
+            raise ValueError(f"out: {folder} holds the results of another spectrum call (other arguments "
+                             "or fastrock version); give a new folder")
+    else:
+        manifest.write_text(json.dumps({"key": key, "runs": n, "fastrock": VERSION, "attrs": attrs}, indent=1))
+    done_rows = np.zeros(n, bool)
+    for part in sorted(folder.glob("part-*.parquet")):
+        done_rows[pd.read_parquet(part, columns=["row"])["row"].to_numpy()] = True
+    rows = np.flatnonzero(~done_rows)
+
+    def inputs(start, stop):
+        return inputs_at(rows[start:stop], stop - start)
+
+    def consume(start, st, met, yf):
+        idx = rows[start:start + st.size]
+        part = table(idx, st, met, yf)
+        part.insert(0, "row", idx)
+        tmp = folder / f".part-{uuid.uuid4().hex}.tmp"
+        part.to_parquet(tmp, index=False)
+        os.replace(tmp, folder / f"part-{idx[0]:010d}-{uuid.uuid4().hex[:8]}.parquet")   # whole parts only
+
+    if rows.size:
+        run_chunks(spec.sweep, rows.size, inputs, smp, consume, chunk_size, progress,
+                   label="runs", model=spec.name)
+    return folder
+
+
+def load_spectrum(out):
+    """The table a streamed :func:`overturning_spectrum` (``out=``) wrote,
+    in grid order, with its ``attrs`` (``interrupted`` True while rows are
+    missing; run the same call again to resume)."""
+    import json
+    from pathlib import Path
+    folder = Path(out)
+    manifest = folder / "spectrum.json"
+    if not manifest.exists():
+        raise ValueError(f"out: {folder} holds no streamed spectrum (no spectrum.json)")
+    info = json.loads(manifest.read_text())
+    parts = sorted(folder.glob("part-*.parquet"))
+    if parts:
+        df = pd.concat([pd.read_parquet(p) for p in parts], ignore_index=True)
+        df = df.sort_values("row", kind="stable").drop(columns="row").reset_index(drop=True)
+    else:
+        df = pd.DataFrame()
+    df.attrs.update(info.get("attrs", {}), interrupted=len(df) < info["runs"])
     return df
