@@ -5,8 +5,9 @@
     ``spectrum`` (``SPECTRUM_COLUMNS`` beside ``overturning_spectrum``), ``rocking-spectrum`` and
     ``rocking-spectrum-runs`` (``SPECTRUM_COLUMNS`` / ``RUN_COLUMNS`` beside
     ``rocking_spectrum``), ``study`` (``RESULT_COLUMNS`` beside ``run_study``), ``metrics``
-    (``METRIC_COLUMNS`` beside ``simulate``) and ``models`` (the registry's entries and the
-    columns each model adds).
+    (``METRIC_COLUMNS`` beside ``simulate``, described as in ``SPECTRUM_COLUMNS`` or by the
+    ``METRIC_DESCRIPTIONS`` beside it), ``batch`` (``BATCH_COLUMNS`` beside ``run_batch``) and
+    ``models`` (the registry's entries and the columns each model adds).
 ``fastrock-cli``
     the help of ``fastrock`` and of every subcommand, from the argparse parser the CLI runs.
 
@@ -241,9 +242,22 @@ class ColumnsDirective(Directive):
             spec, _ = find("SPECTRUM_COLUMNS", fastrock.overturning_spectrum,
                            lambda v: isinstance(v, str) and "amplitude_ratio" in v)
             described = _by_name(parse_columns(spec))
-            rows = [(_names_cell(n),) + described.get(n, ("", "")) for n in cols]
+            # the metrics that are not spectrum columns are described beside METRIC_COLUMNS
+            # (the module defining both; others only import METRIC_COLUMNS)
+            own, mod = find("METRIC_DESCRIPTIONS", fastrock.simulate, lambda v: isinstance(v, str))
+            cols = getattr(importlib.import_module(mod), "METRIC_COLUMNS", cols)
+            described.update(_by_name(parse_columns(own)))
+            missing = [n for n in cols if n not in described]
+            if missing:
+                raise self.error(f"metrics without a description (METRIC_DESCRIPTIONS in {mod}): "
+                                 + ", ".join(missing))
+            rows = [(_names_cell(n),) + described[n] for n in cols]
             return [_source_note("METRIC_COLUMNS", mod),
-                    _table(["key", "meaning (as in the spectrum table)", "unit"], rows, [30, 50, 20])]
+                    _table(["key", "meaning", "unit"], rows, [30, 50, 20])]
+        if key == "batch":
+            text, mod = find("BATCH_COLUMNS", fastrock.run_batch,
+                             lambda v: isinstance(v, str) and "scene" in v)
+            return self._described(text, "BATCH_COLUMNS", mod)
         if key == "models":
             return self._models()
         if key == "statuses":

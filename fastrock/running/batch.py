@@ -27,16 +27,25 @@ from fastrock.running.sweep import run_sweep
 #: Columns of :func:`run_batch`'s table, with units.
 BATCH_COLUMNS = """\
 scene               the scene's name, or its position in the list when it has none
-kernel              the model that ran it (fastrock.running.registry)
-outcome, status     as in simulate(): safe / mode1 / mode2 / leaning / slide / flight / failed
-max_rotation        max |theta| [rad]; max_rotation_ratio = max_rotation / alpha [-]
-impacts, ground_impacts, wall_impacts   counts
-time_uplift, time_overturn, time_end    [s] (NaN: never)
-nfev                right-hand-side evaluations
-theta_end, theta_dot_end    final state [rad, rad/s]
+kernel              the model that ran it (a model of the registry: fastrock.running.registry)
+outcome, status     as in simulate(): safe | mode1 | mode2 | leaning | slide | flight | failed,
+                    and the refined status
+max_rotation        max |theta|                                          [rad]
+max_rotation_ratio  max_rotation / alpha                                 [-]
+max_rotation_pos, max_rotation_neg  largest theta and largest -theta  [rad]
+impacts, ground_impacts, wall_impacts   impact counts (ground_impacts = impacts)
+time_uplift, time_overturn, time_pass_alpha, time_end   first uplift, overturning, first
+                    |theta| > alpha, end of the run; NaN: never  [s]
+nfev, steps, rejected_steps   right-hand-side evaluations, accepted and rejected steps
+theta_end, theta_dot_end    state when the run stopped   [rad, rad/s]
 side                +1 / -1: the side it overturned to (theta > 0 / < 0), 0 if it did not
-max_slide, residual_slide, ...  friction, flight and flexible metrics where the scene has them
-                    (NaN in rows whose model has none)
+max_slide, residual_slide, time_sliding, time_slide_rocking, stick_slip  with friction, as
+                    in the spectrum table (these and the columns below: NaN in the rows whose
+                    model has none)
+lift_offs, time_unloaded  held lift-offs and their time (flexible body with friction)  [-, s]
+flights, time_flight, max_jump  free flight (contact model), as in the spectrum table
+max_deformation, max_deformation_ratio, energy_gains  a flexible body, as in the spectrum table
+time_rocking, time_contact  time lifted off / in full contact (flexible body, foundation)  [s]
 """
 
 

@@ -55,6 +55,15 @@ METRIC_COLUMNS = {
     "time_end": L.M_T_FINAL,
 }
 INTEGER_METRICS = ("impacts", "wall_impacts", "nfev", "steps", "rejected_steps")
+#: What the metrics that are not spectrum columns (SPECTRUM_COLUMNS) mean, with units.
+METRIC_DESCRIPTIONS = """\
+max_rotation_pos    largest theta, toward +x (rocking on the right pivot); 0 if never   [rad]
+max_rotation_neg    largest -theta, toward -x (rocking on the left pivot); 0 if never   [rad]
+time_pass_alpha     first time |theta| exceeded alpha (of the pivot it rocks on): the centre of
+                    mass beyond the pivot; NaN if never                                 [s]
+steps               accepted integrator steps
+rejected_steps      integrator steps rejected by the error control and retried smaller
+"""
 
 
 def metrics_dict(met, body):
