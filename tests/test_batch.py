@@ -60,3 +60,14 @@ def test_dicts_and_bad_scenes():
         fr.run_batch([3.0], progress=False)
     with pytest.raises(ValueError, match="empty"):
         fr.run_batch([], progress=False)
+
+
+def test_rigid_bodies_in_a_batch():
+    wedge = fr.RigidBody(mass=1.0, inertia=0.06, b1=0.25, h1=0.7, b2=0.12, h2=0.7)
+    twin = fr.RigidBody(mass=1.0, inertia=0.06, b1=0.15, h1=0.7, b2=0.15, h2=0.7)
+    scenes = [fr.Scene(wedge, fr.Pulse(0.35, 1.0, sign=s)) for s in (1, -1)] + [fr.Scene(twin, fr.Pulse(0.35, 1.0))]
+    df = fr.run_batch(scenes, progress=False)
+    assert df["kernel"].tolist() == ["rigid_body", "rigid_body", "rigid"]
+    for (_, row), scene in zip(df.iterrows(), scenes):
+        r = scene.run(early_exit=True)
+        assert (row["outcome"], row["status"], row["max_rotation"]) == (r.outcome, r.status, r.metrics["max_rotation"])

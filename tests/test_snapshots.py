@@ -38,7 +38,9 @@ def test_slip_shifts_the_body():
 
 def test_outline_of_a_block_from_alpha_and_p():
     blk = fr.RigidBlock(alpha=0.25, p=2.0)
-    verts, b, h = block_outline(blk)
+    verts, pivots = block_outline(blk)
+    b, h = pivots[1][0], -pivots[1][1]
+    assert pivots[-1] == (-b, -h)
     R = 3 * blk.g / (4 * blk.p ** 2)
     assert math.hypot(b, h) == pytest.approx(R) and math.atan2(b, h) == pytest.approx(0.25)
 
@@ -50,3 +52,26 @@ def test_strip_renders(tmp_path):
     assert len(ax.patches) == 5
     ax.figure.savefig(tmp_path / "strip.png", dpi=80)
     assert (tmp_path / "strip.png").stat().st_size > 1000
+
+
+@pytest.mark.parametrize("with_outline", [True, False])
+def test_asymmetric_body_pivots_on_its_own_corners(with_outline, tmp_path):
+    """A RigidBody rocks on (b2, -h2) or (-b1, -h1): that corner stays on the ground."""
+    if with_outline:
+        body = fr.RigidBody.from_polygon([(0, 0), (0.5, 0), (0.3, 1.2), (0.05, 1.0)], mass=100.0)
+    else:
+        body = fr.RigidBody(mass=1.0, inertia=0.06, b1=0.25, h1=0.7, b2=0.12, h2=0.7)
+    r = fr.simulate(body, fr.Pulse(0.7, 1.0, sign=-1), duration=4.0)
+    _verts, pivots = block_outline(body)
+    rows = r.history[r.history["pivot"] != 0]
+    assert len(rows) > 5
+    for _, row in rows.iterrows():
+        world, cm = pose(body, row.to_dict())
+        s = int(row["pivot"])
+        corner = np.asarray(pivots[s])
+        # the pivot's world position is where it rests, and no outline point is below the ground
+        k = int(np.argmin(np.hypot(*(world - [corner[0], 0.0]).T)))
+        assert world[k] == pytest.approx([corner[0], 0.0], abs=1e-12)
+        assert world[:, 1].min() >= -1e-9
+    ax = fr.plot_snapshots(r, n=4)
+    ax.figure.savefig(tmp_path / "s.png", dpi=60)

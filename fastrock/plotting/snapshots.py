@@ -13,15 +13,21 @@ from fastrock.plotting.figures import get_pyplot
 
 
 def block_outline(body):
-    """The body's outline as vertices relative to its centre of mass [m],
-    counter-clockwise, and the half-width b and CM height h of its base.
+    """The body's outline as vertices relative to its centre of mass [m]
+    and its two base pivots ``{+1: (x, y), -1: (x, y)}`` (right, left).
 
-    A body with an ``outline()`` method (a polygon) gives its own; a
-    RigidBlock is drawn as its rectangle: b, h when given, else the
-    rectangle with the same alpha and p (R = 3 g / (4 p^2))."""
-    if hasattr(body, "outline"):
-        verts = np.asarray(body.outline(), float)
-        return verts, None, None
+    A :class:`~fastrock.RigidBody` gives its own outline (a polygon or mesh
+    section), or, built from numbers, the box over its pivots up to the
+    height of the lower one above the centre of mass; a RigidBlock is its
+    rectangle: b, h when given, else the rectangle with the same alpha and
+    p (R = 3 g / (4 p^2)); a flexible body the 2B x 2H box of its base."""
+    if hasattr(body, "b1"):                       # RigidBody
+        pivots = {1: (body.b2, -body.h2), -1: (-body.b1, -body.h1)}
+        if getattr(body, "outline", None) is not None:
+            return np.asarray(body.outline, float), pivots
+        top = max(body.h1, body.h2)
+        verts = np.array([[-body.b1, -body.h1], [body.b2, -body.h2], [body.b2, top], [-body.b1, top]], float)
+        return verts, pivots
     b, h = getattr(body, "b", None), getattr(body, "h", None)
     if b is None or h is None:
         if getattr(body, "kind", "rigid") == "flexible":
@@ -30,7 +36,7 @@ def block_outline(body):
             R = 3.0 * body.g / (4.0 * body.p ** 2)
             b, h = R * math.sin(body.alpha), R * math.cos(body.alpha)
     verts = np.array([[-b, -h], [b, -h], [b, h], [-b, h]], float)
-    return verts, float(b), float(h)
+    return verts, {1: (float(b), -float(h)), -1: (-float(b), -float(h))}
 
 
 def _rotate(theta, pts):
@@ -47,21 +53,19 @@ def pose(body, state):
     Rocking about corner s, the corner (s b, -h) stays on the ground at
     x = s b + d; in the contact model (columns ``d``, ``z``) the base point
     (0, -h) below the CM is at (d, z)."""
-    verts, b, h = block_outline(body)
-    if b is None:          # a polygon: the pivots are its lowest corners
-        b = float(np.max(np.abs(verts[:, 0][np.isclose(verts[:, 1], verts[:, 1].min())])))
-        h = float(-verts[:, 1].min())
+    verts, pivots = block_outline(body)
     theta = float(state["theta"])
     d = float(state.get("d", 0.0) or 0.0)
     if "z" in state:
+        h = 0.5 * (-pivots[1][1] - pivots[-1][1])
         origin = np.array([d, float(state["z"])])
         anchor = np.array([0.0, -h])
     else:
         s = int(state.get("pivot", 0) or 0)
         if s == 0:
             s = 1 if theta >= 0 else -1
-        origin = np.array([s * b + d, 0.0])
-        anchor = np.array([s * b, -h])
+        anchor = np.array(pivots[s], float)
+        origin = np.array([anchor[0] + d, 0.0])
     world = origin + _rotate(theta, verts - anchor)
     cm = origin + _rotate(theta, -anchor[None, :])[0]
     return world, cm
@@ -99,7 +103,7 @@ def plot_snapshots(result, times=None, n=6, ax=None, slope=None, color="#264653"
     if slope is None:
         ground = getattr(result, "ground", None)
         slope = ground.slope if ground is not None else 0.0
-    verts, _b, _h = block_outline(result.body)
+    verts, _pivots = block_outline(result.body)
     width = float(np.ptp(verts[:, 0]))
     height = float(np.ptp(verts[:, 1]))
     spacing = 1.6 * max(width, 0.8 * height) + float(np.max(np.abs(hist.get("d", [0.0]))))

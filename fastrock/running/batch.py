@@ -62,8 +62,8 @@ def _as_scene(i, item):
 
 def _prepare(i, scene, early_exit):
     """Kernel inputs of one scene: (spec, y0, hdr, smp, opt)."""
-    spec = registry.select(scene.body, scene.wall, scene.friction, scene.foundation, scene.mass)
-    body = scene.body
+    body = registry.model_body(scene.body)      # a symmetric RigidBody runs as its RigidBlock
+    spec = registry.select(body, scene.wall, scene.friction, scene.foundation, scene.mass)
     ground = as_ground(scene.ground)
     exit_early = early_exit
     if ground is not None:

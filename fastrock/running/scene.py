@@ -46,8 +46,9 @@ class Scene:
     outputs: dict = field(default_factory=dict)
 
     def __post_init__(self):
-        if not isinstance(self.body, (RigidBlock, FlexibleBody)):
-            raise ValueError(f"body must be a RigidBlock or FlexibleBody, got {type(self.body).__name__}")
+        from fastrock.model.rigid_body import RigidBody
+        if not isinstance(self.body, (RigidBlock, FlexibleBody, RigidBody)):
+            raise ValueError(f"body must be a RigidBlock, RigidBody or FlexibleBody, got {type(self.body).__name__}")
         self.excitation = as_excitation(self.excitation)
         self.vertical = as_excitation(self.vertical, "vertical")
 
