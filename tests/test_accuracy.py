@@ -10,6 +10,7 @@ import pandas as pd
 import pytest
 
 import fastrock as fr
+from fastrock.io.default_records import load_default_record
 from fastrock.analyses import accuracy as A
 from fastrock.plotting.accuracy import plot_work_precision
 from fastrock.running import registry
@@ -56,7 +57,7 @@ def test_rigid_and_flexible_cases_unchanged():
     assert (over.amplitude, over.frequency, over.sign) == (3.0, 3.0, 1)
     assert len(grid) == 64 and {p.sign for p in grid} == {1}
     safe, over, grid = A._cases(body, "record", "rigid")
-    rec = fr.records.load_default_record()
+    rec = load_default_record()
     unit = body.g * math.tan(body.alpha) / rec.pga
     assert safe.scale == pytest.approx(1.5 * unit) and over.scale == pytest.approx(6.0 * unit)
     assert len(grid) == 24
