@@ -43,12 +43,12 @@ from .friction import initial_contact, track_slide
 from .hybrid import (book_time, check_energy, final_status, integrate_hybrid,
                      log_event, sweep_rows)
 from .layout import (D_AUX, D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
-                     EV_IMPACT, EV_LIFT_OFF_HELD, EV_RELOAD, EV_SLIP, EV_STICK,
-                     EV_UPLIFT, FAIL_INCONSISTENT, FLIGHT, MODE_REST,
+                     EV_IMPACT, EV_LIFT_OFF_HELD, EV_RELOAD, EV_REST, EV_SLIP,
+                     EV_STICK, EV_UPLIFT, FAIL_INCONSISTENT, FLIGHT, MODE_REST,
                      MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK, M_IMPACTS,
                      M_N_LIFT_OFF, M_N_STICK_SLIP, M_T_LAST_IMPACT,
-                     M_T_SLIP_START, M_T_UPLIFT, N_DISC, O_EARLY_EXIT, O_T0,
-                     RUNNING)
+                     M_T_SLIP_START, M_T_UPLIFT, N_DISC, O_EARLY_EXIT,
+                     O_EPS_OMEGA, O_EPS_T, O_T0, RUNNING)
 from .rigid import UPLIFT_RTOL, overturned, passed_alpha, track_rotation
 
 from .layout import (F_LIFT_OFF, F_MU_K, F_MU_S, LIFT_OFF_HOLD,  # noqa: E402,F401
@@ -621,7 +621,20 @@ def slip_column(c, Yc, m22, par):
 
 
 @jit
-def impact(t, y, par, disc, hdr, smp, met, log, cnt):
+def rest_speed(par, opt):
+    """Slip speed below which a chatter impact leaves the base at rest:
+    eps_omega times the largest distance of the mass or the base CM from
+    a pivot, i.e. no point of the body rotating at eps_omega about the
+    pivot moves faster (the rest rule's threshold, applied to the
+    tangential velocity of the contact)."""
+    B = par[F_B]
+    H = par[F_H]
+    hb = par[F_HB]
+    return opt[O_EPS_OMEGA] * math.sqrt(B * B + max(H * H, hb * hb))
+
+
+@jit
+def impact(t, y, par, disc, hdr, smp, met, log, cnt, rest_below=0.0):
     """theta -> 0: full contact, theta'+ = 0, d'+ = d'- + h_b theta'-,
     u'+ = u'- + (H - h_b) theta'-, then the initiation test.
 
@@ -630,7 +643,24 @@ def impact(t, y, par, disc, hdr, smp, met, log, cnt):
     horizontal impulse, none on u).  physics.md 4.4 writes u'+ = u'- +
     H theta'-, which counts the base's share twice and adds energy when
     h_b != 0 (0.920 -> 0.981 J/kg at H = 2.3, h_b = 0.2, m_b = 0.1); both
-    agree at the default h_b = 0."""
+    agree at the default h_b = 0.
+
+    A chatter impact (physics.md 7: |theta'-| < eps_omega, or within eps_t
+    of the previous impact; ``transition`` then passes ``rest_below`` =
+    ``rest_speed``, else 0) that leaves a slip slower than ``rest_below``
+    rests the base tangentially too.  Without this rule a base at rest
+    that the impact gives d' = h_b theta'- ~ 1e-15 starts slide-rocking:
+    the slip solve applies the saturated friction -mu_k sigma N where
+    stick needs far less, and its moment lifts a corner that stick-rocking
+    (admissible at once) pulls back; each cycle's impact restarts the
+    slip, at one instant (fuzz flexible_friction:2026:150).  The slip is
+    stopped by a plastic horizontal impulse on the base: in full contact,
+    with M = [[1, 1], [1, 1 + m_b]] on (u', d'), the kinetic-metric
+    projection onto d' = 0 is u'+ = u' + d', d'+ = 0 (the mass keeps its
+    horizontal velocity u' + d'); it removes m_b d'^2 / 2, so energy never
+    rises.  The initiation test then sees d' = 0: the uplift test of 3.3
+    and |F| <= mu_s N pick a contact mode consistent with the contact
+    forces."""
     s = disc[D_PIVOT]
     pre = y[3]
     met[M_IMPACTS] += 1
@@ -640,9 +670,15 @@ def impact(t, y, par, disc, hdr, smp, met, log, cnt):
     y[5] = y[5] + par[F_HB] * pre
     y[2] = 0.0
     y[3] = 0.0
+    if y[5] != 0.0 and abs(y[5]) < rest_below:
+        y[1] += y[5]
+        y[5] = 0.0
     check_energy(t_before, kinetic(y, s, par), met)
     log_event(log, cnt, t, EV_IMPACT, pre, 0.0, 0.0, -s)
-    return start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+    st = start_from_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+    if rest_below > 0.0 and disc[D_MODE] == MODE_REST:
+        log_event(log, cnt, t, EV_REST, pre, 0.0, 0.0, 0)
+    return st
 
 
 @jit
@@ -713,7 +749,10 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return stick(t, y, par, disc, hdr, smp, met, log, cnt)
     if k == R_OVERTURN:
         return overturned(t, y[2], y[3], s, met, log, cnt)
-    return impact(t, y, par, disc, hdr, smp, met, log, cnt)
+    chatter = (abs(y[3]) < opt[O_EPS_OMEGA]
+               or t - met[M_T_LAST_IMPACT] < opt[O_EPS_T])
+    return impact(t, y, par, disc, hdr, smp, met, log, cnt,
+                  rest_speed(par, opt) if chatter else 0.0)
 
 
 @jit
