@@ -109,7 +109,7 @@ class Scene:
             raise ValueError(f"unknown scene section(s) {sorted(unknown)}; known: {sorted(known)}")
         if "body" not in data:
             raise ValueError("scene: a [body] section is required")
-        body = body_from_table(as_table(data["body"], "body"))
+        body = body_from_table(as_table(data["body"], "body"), base)
         exc = _excitation(as_table(data["excitation"], "excitation"), base, "excitation") if "excitation" in data \
             else None
         vert = _excitation(as_table(data["vertical"], "vertical"), base, "vertical") if "vertical" in data else None
@@ -169,9 +169,40 @@ def only_keys(d, section, allowed):
     return d
 
 
-def body_from_table(d):
-    """The body of a scene's [body] table (type = "rigid" | "flexible")."""
+_RIGID_BODY_COMMON = {"e", "g", "theta_over"}
+
+
+def rigid_body_from_table(d, base=None):
+    """A RigidBody from a [body] table of type "rigid-body": its numbers (mass, inertia, b1, h1,
+    b2, h2, and top, top_radius), a 2D outline (``vertices`` [m] with density [kg/m^3] and
+    thickness [m], or mass [kg]; pose [rad]) or a mesh file (``mesh``, a path relative to the
+    scene file; axis, up, density or mass, pose)."""
+    from fastrock.model.rigid_body import RigidBody
+    if "vertices" in d:
+        kw = only_keys(d, "body", {"vertices", "density", "thickness", "mass", "pose"} | _RIGID_BODY_COMMON)
+        vertices = kw.pop("vertices")
+        if not isinstance(vertices, list) or not all(isinstance(v, list) and len(v) == 2 for v in vertices):
+            raise ValueError("[body] vertices must be a list of [x, y] pairs [m]")
+        return _build(lambda **k: RigidBody.from_polygon(vertices, **k), kw, "body")
+    if "mesh" in d:
+        kw = only_keys(d, "body", {"mesh", "axis", "up", "density", "mass", "pose"} | _RIGID_BODY_COMMON)
+        path = kw.pop("mesh")
+        if not isinstance(path, str) or not path:
+            raise ValueError(f"[body] mesh must be a file name (a string), got {path!r}")
+        for k in ("axis", "up"):
+            if k in kw:
+                kw[k] = tuple(kw[k])
+        return _build(lambda **k: RigidBody.from_mesh(Path(base or ".") / path, **k), kw, "body")
+    return _build(RigidBody, only_keys(d, "body", {"mass", "inertia", "b1", "h1", "b2", "h2", "top",
+                                                   "top_radius"} | _RIGID_BODY_COMMON), "body")
+
+
+def body_from_table(d, base=None):
+    """The body of a scene's [body] table (type = "rigid" | "rigid-body" | "flexible"); ``base``:
+    the folder a mesh file name is relative to."""
     kind = d.pop("type", "rigid")
+    if kind == "rigid-body":
+        return rigid_body_from_table(d, base)
     if kind == "rigid":
         if "b" in d or "h" in d:
             return _build(RigidBlock.rectangle, only_keys(d, "body", {"b", "h", "e", "g", "theta_over"}), "body")
@@ -187,7 +218,7 @@ def body_from_table(d):
         return _build(FlexibleBody, only_keys(d, "body", {"alpha", "p", "omega_n_over_p", "zeta", "e", "impact", "g",
                                                       "theta_over", "rotary_inertia_ratio", "mass",
                                                       "base_mass_ratio", "base_cm_height"}), "body")
-    raise ValueError(f"[body] type must be 'rigid' or 'flexible', got {kind!r}")
+    raise ValueError(f"[body] type must be 'rigid', 'rigid-body' or 'flexible', got {kind!r}")
 
 
 _FOUNDATION_KEYS = {

@@ -191,7 +191,8 @@ class Study:
         bodies = []
         for d in data["bodies"]:
             d = as_table(d, "[bodies]")
-            keys = [k for k, v in d.items() if isinstance(v, list)]
+            # a list expands to one body per value; an outline (vertices) or an axis is one value
+            keys = [k for k, v in d.items() if isinstance(v, list) and k not in ("vertices", "axis", "up")]
             n = math.prod(len(d[k]) for k in keys)
             if n + len(bodies) > MAX_BODIES:
                 raise StudyError(f"[[bodies]]: the lists in {d} expand to {n:,} bodies, more than "
@@ -200,7 +201,7 @@ class Study:
                 one = dict(d)
                 one.update(zip(keys, combo))
                 try:
-                    bodies.append(body_from_table(one))
+                    bodies.append(body_from_table(one, base))
                 except (TypeError, ValueError) as exc:
                     raise StudyError(f"[[bodies]] {d}: {exc}") from None
         variants = []
