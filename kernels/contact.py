@@ -667,6 +667,25 @@ def event(k, t, y, par, disc, hdr, smp):
         if (1 if s > 0 else 0) == near_index(par):
             return np.inf, 0.0, True
         g, gd = approach_gap(K_NEAR, y, par)
+        if mode == MODE_ROCK:
+            # pivot fixed on the far corner: the near corner lies at
+            # (b1 + b2) cos(theta) from it along the wall normal, nearest
+            # to the wall at theta = 0 (physics.md 2: tilting away from the
+            # wall no point approaches it).  g_flat, its gap at theta = 0,
+            # is exact geometry; within the contact band (FACE_RTOL,
+            # near_at_wall) the corner reaches the wall only with the base
+            # flat, the ground impact K_IMPACT (a face impact there).  The
+            # rounded gap of a corner that starts at the wall and tilts
+            # away read <= 0 for several steps: a wall impact at zero
+            # approach velocity fired at once, changed nothing, for ever
+            # (issue #14); and a drift of 1e-12 m put the corner on the
+            # wall at theta ~ 1e-5, an ill-conditioned impact that gained
+            # energy.
+            sh = math.sin(0.5 * y[0])
+            g_flat = g - 2.0 * (par[C_B1] + par[C_B2]) * sh * sh
+            bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
+            if g_flat >= -FACE_RTOL * bw:
+                return np.inf, 0.0, True
         return g, gd, True
     if mode == MODE_FLIGHT:
         if k == K_OVERTURN:
@@ -680,7 +699,11 @@ def event(k, t, y, par, disc, hdr, smp):
                 return np.inf, 0.0, True
             j = k - K_LAND0 if k != K_WALL else 2
             gap, vn, _vt = point_kin(j, y, par)
-            if vn < 0.0:
+            # moving toward the surface beyond rounding: a flight entered
+            # with a corner at rest on the ground (N = 0 with the free
+            # corner not falling) keeps vn ~ -1e-17, and a landing at that
+            # speed changed nothing and flew again at once (zero-time loop)
+            if vn < -1e-12 * velocity_scale(y, par):
                 return gap, vn, True
             return np.inf, 0.0, True
         if k == K_APEX:
@@ -694,6 +717,12 @@ def event(k, t, y, par, disc, hdr, smp):
                 return np.inf, 0.0, True
             gap, vn, _vt = point_kin(2, y, par)
             if vn < 0.0:
+                return gap, vn, True
+            # at rest or moving away: no root, unless the face is in the
+            # wall beyond the contact band (a slide that reached the wall
+            # and stopped inside one step, whose end is at rest: located)
+            bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
+            if gap < -FACE_RTOL * bw:
                 return gap, vn, True
             return np.inf, 0.0, True
         if k == K_STICK or k == K_LIFT:
@@ -1123,6 +1152,12 @@ def pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, forbid_stick):
 
 
 @jit
+def velocity_scale(y, par):
+    """A speed scale of the state [m/s] for rounding tolerances."""
+    return abs(y[1]) * (par[C_B1] + par[C_H1]) + abs(y[3]) + abs(y[5])
+
+
+@jit
 def into_wall(t, y, par, disc, hdr, smp):
     """In the current mode the wall-side base corner (on the wall) moves or
     accelerates into the wall."""
@@ -1176,6 +1211,14 @@ def pick_wall_corner(j, t, y, par, disc, hdr, smp, met, log, cnt,
     if abs(vt) <= V_TOL or not np.isfinite(par[C_MU_K]):
         y[3] -= vt
         vt = 0.0
+    if vnw < -1e-9 * velocity_scale(y, par):
+        # the corner moves into the wall (a landing of the far corner with
+        # the near one at the wall): a ladder would keep that normal
+        # velocity and drive the corner into the wall (failed:face-contact);
+        # it is stopped with the rest below, as a corner at rest pressed
+        # into the wall (all velocities 0: plastic, dissipative)
+        y[3] -= vt
+        vt = 0.0
     acc = np.empty(3)
     mu = par[C_MU_S]
     fr_w = wall_frictional(par)
@@ -1202,6 +1245,15 @@ def pick_wall_corner(j, t, y, par, disc, hdr, smp, met, log, cnt,
     # velocities 0: dissipative) if the forces allow it
     y[1] = 0.0
     project_single(j, y, par, True)
+    o = 1 - j
+    gap_o, _vn, _vt = point_kin(o, y, par)
+    if gap_o <= FLAT_RTOL * (par[C_B1] + par[C_B2]):
+        # flat (the wall-side corner on the ground too, as a flat landing):
+        # the wall and the pivot's friction are parallel there, so the
+        # wedge and ladder solves are singular (zero slip acceleration:
+        # stick and slip alternated at one instant); at rest now, the flat
+        # pick decides (face rest while pushed toward the wall)
+        return pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
     st0 = CS_STICK if j == 0 else CS_OPEN
     st1 = CS_STICK if j == 1 else CS_OPEN
     ok, N0, F0, N1, F1, N2, _F2 = mode_solve(t, y, par, st0, st1,
@@ -2024,7 +2076,14 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
     post = np.empty(3)
     tgt = -e_w * vn2
     separated = False
-    if mode == MODE_FLIGHT and wall_frictional(par):
+    if vn2 > 0.0:
+        # found at the wall moving away from it (a grazing root located
+        # after the turn): the wall cannot pull, so no impulse (the map
+        # -e_w v_n would drive the corner back into the wall)
+        post[0] = vgx
+        post[1] = vgy
+        post[2] = y[1]
+    elif mode == MODE_FLIGHT and wall_frictional(par):
         # a frictional wall alone: Routh's impact with Poisson's restitution
         post[0] = vgx
         post[1] = vgy
@@ -2053,6 +2112,19 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
     check_energy(before, kinetic_energy(y, par), met)
     track_rotation(y[0], met)
     log_event(log, cnt, t, EV_WALL_IMPACT, pre, y[1], y[0], s)
+    if kw == K_NEAR and chatter:
+        gj, _vn, _vt = point_kin(j, y, par)
+        if gj <= FACE_RTOL * (par[C_B1] + par[C_B2]):
+            # the rest rule, as for the top corner below: base-corner wall
+            # impacts closer than eps_t (a Zeno sequence of wall impacts
+            # and landings, or micro-bounces off the wall under a push
+            # toward it) end at rest, all velocities 0 (dissipative),
+            # with pivot j on the ground; the pick closes the wall contact
+            y[1] = 0.0
+            project_single(j, y, par, True)
+            disc[D_PIVOT] = s
+            return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
+                               False)
     if mode == MODE_FLIGHT:
         return RUNNING
     if kw == K_NEAR:
