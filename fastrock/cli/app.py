@@ -267,7 +267,7 @@ def _extra_commands():
     """Subcommands defined in their own modules."""
     from fastrock.cli import accuracy, fit, rocking_spectrum, scene, study
     return [fit.add_fit_subcommand, rocking_spectrum.add_subcommands, accuracy.add_subcommand,
-            scene.add_subcommand, study.add_subcommand]
+            scene.add_subcommand, scene.add_batch_subcommand, study.add_subcommand]
 
 
 def main(argv=None):
