@@ -15,6 +15,7 @@ from fastrock.io.default_records import load_default_record
 
 G = fr.G_STANDARD
 PHI = math.radians(10.0)
+BLOCK = fr.RigidBlock.rectangle(0.15, 0.6)
 
 
 def _stout(e=0.0):
@@ -187,10 +188,48 @@ def test_slope_steeper_than_friction_or_slenderness():
         fr.overturning_spectrum(blk, [1.0], [1.0], ground=fr.Ground(0.31), progress=False)
 
 
-def test_flexible_body_refused_on_a_slope():
-    body = fr.FlexibleBody(alpha=0.2, p=2.0, omega_n_over_p=10.0, zeta=0.05)
-    with pytest.raises(ValueError, match="slope.*RigidBlock only"):
-        fr.simulate(body, fr.Pulse(0.1, 1.0), ground=fr.Ground(0.05))
+def test_flexible_body_starts_at_its_static_deflection():
+    """Without shaking a flexible body on a slope stays exactly where it starts: the column at
+    u = g sin(phi) / omega_n^2 downhill, the base flat."""
+    body = fr.FlexibleBody(alpha=0.2, p=2.0, omega_n_over_p=8.0, zeta=0.05)
+    ground = fr.Ground(math.radians(4.0))
+    u_s = ground.static_deflection(body)
+    assert u_s == pytest.approx(G * math.sin(ground.slope) / body.omega_n ** 2)
+    for friction in (None, fr.Friction(0.5)):
+        r = fr.simulate(body, None, ground=ground, duration=3.0, friction=friction)
+        assert r.status == "safe:no-uplift"
+        assert np.all(r.history["u"] == u_s) and np.all(r.history["theta"] == 0.0)
+        if friction is not None:
+            assert np.all(r.history["d"] == 0.0)
+
+
+def test_stiff_flexible_body_on_a_slope_is_the_rigid_block():
+    """The stiff limit (omega_n/p = 200) on a 4-degree slope: the same outcomes and max
+    rotations (to 1e-3) as its rigid equivalent on a pulse grid, both signs."""
+    flex = fr.FlexibleBody(alpha=0.25, p=2.0, omega_n_over_p=200.0, zeta=0.05)
+    ground = fr.Ground(math.radians(4.0))
+    grid = dict(amplitude_ratios=[0.6, 1.0, 1.5, 2.5, 4.0], frequency_ratios=[0.5, 1.5, 3.0], sign=[1, -1],
+                ground=ground, progress=False)
+    a = fr.overturning_spectrum(flex, **grid)
+    b = fr.overturning_spectrum(flex.rigid_equivalent(), **grid)
+    assert list(a["outcome"]) == list(b["outcome"])
+    assert set(a["outcome"]) >= {"safe", "mode1", "mode2"}
+    np.testing.assert_allclose(a["max_rotation_ratio"], b["max_rotation_ratio"], atol=1e-3)
+
+
+def test_flexible_body_that_cannot_stand_is_refused():
+    soft = fr.FlexibleBody(alpha=0.2, p=2.0, omega_n_over_p=1.2, zeta=0.05)
+    ground = fr.Ground(0.15)
+    assert ground.flexible_rest_margin(soft, 0.0) <= 0.0
+    with pytest.raises(ValueError, match="slope.*flexible body cannot stand"):
+        fr.simulate(soft, fr.Pulse(0.01, 1.0), ground=ground)
+
+
+def test_foundation_refused_on_a_slope():
+    from fastrock.model.foundation import TwoSpringFoundation
+    fnd = TwoSpringFoundation.from_vibration(BLOCK, 40.0, 0.05, mass=50.0)
+    with pytest.raises(ValueError, match="slope.*foundation"):
+        fr.simulate(BLOCK, fr.Pulse(0.1, 1.0), foundation=fnd, mass=50.0, ground=fr.Ground(0.05))
 
 
 def test_lift_off_refused_for_the_rocking_model():

@@ -219,6 +219,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         y0 = np.asarray(foundation.initial_state(block_inertia(body, mass), 0.0, 0.0), float)
     else:
         y0 = np.zeros(spec.n_state)
+        if ground is not None:
+            ground.initial_state(body, spec, y0)      # a flexible column at its static deflection
 
     # Inputs and results one chunk at a time: a 1000 x 1000 grid never holds
     # the kernels' inputs or their full metric rows (N_MET floats per run).

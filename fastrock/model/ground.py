@@ -16,8 +16,10 @@ from ..constants import G_STANDARD
 from ..kernels import layout as L
 
 DIRECTIONS = ("horizontal", "slope")
-#: models whose early decisions use closed forms of free rocking on level ground
-CLOSED_FORM_MODELS = ("rigid", "rigid_wall", "rigid_body")
+#: models whose early decisions use closed forms or energy bounds of free motion on level ground
+#: (free rocking; the flexible column's oscillation about u = 0): off on a slope
+CLOSED_FORM_MODELS = ("rigid", "rigid_wall", "rigid_body", "flexible", "flexible_wall", "flexible_friction",
+                      "flexible_flight")
 #: models that never leave the ground (no flight event without a vertical channel)
 GROUNDED_MODELS = ("rigid", "rigid_body")
 
@@ -90,10 +92,21 @@ class Ground:
         if self.is_level:
             return
         where = f"slope = {self.slope:.6g} rad ({self.slope_deg:.4g} deg)"
-        if flexible or foundation is not None:
-            raise ValueError(f"{where}: sloping ground runs with a RigidBlock only so far (a flexible column "
-                             "or foundation would start away from its static deflection on the incline)")
+        if foundation is not None:
+            raise ValueError(f"{where}: sloping ground runs without a flexible foundation so far (its springs "
+                             "would start away from their static deflection on the incline)")
         demand = self.static_demand()
+        if flexible:
+            sliding = friction is not None and friction.sliding_possible
+            margin = self.flexible_rest_margin(body, body.base_mass(sliding))
+            if margin <= 0.0:
+                raise ValueError(f"{where}: the flexible body cannot stand on it: at its static deflection "
+                                 f"u = {self.static_deflection(body):.4g} m the column's moment lifts the "
+                                 f"downhill corner (uplift margin {margin:.4g} m^2/s^2 per unit mass)")
+            if friction is not None and demand >= friction.mu_s:
+                raise ValueError(f"{where}: steeper than friction can hold at rest: tan(slope) = {demand:.4g} "
+                                 f">= mu_s = {friction.mu_s:g}")
+            return
         alpha = getattr(body, "alpha2", body.alpha)     # the downhill (+x) side of an asymmetric body
         if demand >= math.tan(alpha):
             raise ValueError(f"{where}: the block cannot stand on it: tan(slope) = {demand:.4g} >= tan(alpha) = "
@@ -116,6 +129,29 @@ class Ground:
             raise ValueError(f"slope = {self.slope:.6g} rad: a horizontal peak of {peak_horizontal:.4g} m/s^2 "
                              f">= g / tan(slope) = {limit:.4g} m/s^2 lifts the block off the incline; run it "
                              "with Friction(..., lift_off='flight') (the contact model follows free flight)")
+
+    def static_deflection(self, body):
+        """The flexible column's static deflection downhill [m], g sin(phi) / omega_n^2: where it
+        rests in full contact on the slope (every flexible run on a slope starts there)."""
+        return body.g * math.sin(self.slope) / body.omega_n ** 2
+
+    def flexible_rest_margin(self, body, base_mass_ratio):
+        """The uplift test of the flexible body at rest on the slope, about its downhill corner, per
+        unit mass [m^2/s^2]: G (B - u) + m_b/m (G B + a_g h_b) - H w^2 u with a_g = -g sin(phi),
+        G = g cos(phi) and u the static deflection (> 0: it stands)."""
+        g = body.g
+        G = g * math.cos(self.slope)
+        ag = -g * math.sin(self.slope)
+        u = self.static_deflection(body)
+        B, H = body.B, body.H
+        return (G * (B - u) + base_mass_ratio * (G * B + ag * body.base_cm_height)
+                - H * body.omega_n ** 2 * u)
+
+    def initial_state(self, body, spec, y0):
+        """``y0`` with a flexible column at its static deflection on the slope (in place)."""
+        if "u" in spec.state_names:
+            y0[spec.state_names.index("u")] = self.static_deflection(body)
+        return y0
 
     def static_demand(self):
         """tan(phi): the ratio of the along-slope to the normal component of

@@ -88,6 +88,8 @@ def _prepare(i, scene, early_exit):
         y0 = np.zeros(spec.n_state)
         y0[spec.theta_index] = scene.theta0
         y0[spec.theta_index + 1] = scene.dtheta0
+        if ground is not None:
+            ground.initial_state(body, spec, y0)      # a flexible column at its static deflection
     return spec, y0, hdr, smp, opt, solver
 
 

@@ -154,6 +154,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     y0 = np.zeros(spec.n_state)
     y0[spec.theta_index] = theta0
     y0[spec.theta_index + 1] = dtheta0
+    if ground is not None:
+        ground.initial_state(body, spec, y0)      # a flexible column at its static deflection
     while True:
         y = y0.copy()
         met = np.zeros(L.N_MET)

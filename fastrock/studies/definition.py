@@ -304,6 +304,8 @@ class Study:
                     raise StudyError(f"body {bi} with variant {names[vi]!r}: {exc}") from None
                 y0s[bi, vi] = (np.zeros(specs[bi, vi].n_state) if foundation is None else
                                foundation.initial_state(_block_inertia(body, mass), 0.0, 0.0))
+                if effects[vi].get("ground") is not None:     # a flexible column at its static deflection
+                    effects[vi]["ground"].initial_state(body, specs[bi, vi], y0s[bi, vi])
         prep = _Prepared(records=records, bodies=bodies, body_labels=_body_labels(bodies),
                          variant_names=names, walls=walls, levels=levels, measure=self.measure,
                          solver=solver, t_after=t_after, early_exit=early_exit,
