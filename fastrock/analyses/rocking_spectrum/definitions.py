@@ -151,7 +151,7 @@ def rocking_spectrum(records, slenderness=None, half_widths=None, walls=None, *,
                      unit=None, solver=None, rtol=None, atol=None, dt=None,
                      record_breakpoints=None, t_after=T_AFTER, early_exit=True,
                      stable_outcomes=STABLE_OUTCOMES, progress=True, chunk_size=None,
-                     return_runs=False):
+                     return_runs=False, ground=None):
     """Rocking spectrum (beta against Tp/Tm) of records, in parallel.
 
     Every record x wall setting x half-width x slenderness block runs in
@@ -192,6 +192,11 @@ def rocking_spectrum(records, slenderness=None, half_widths=None, walls=None, *,
         runs get ``beta_bound = "incomplete"``).
     return_runs : bool
         Also return the per-run table (``RUN_COLUMNS``).
+    ground : Ground, optional
+        Sloping ground under every block (None: level): the records act as
+        the ground says (horizontally by default), the early decisions are
+        off, and every block of the grid must stand on the slope
+        (tan(alpha) > tan(slope); an error naming ``slope`` otherwise).
 
     Returns
     -------
@@ -201,7 +206,7 @@ def rocking_spectrum(records, slenderness=None, half_widths=None, walls=None, *,
                                  solver=solver, rtol=rtol, atol=atol, dt=dt,
                                  record_breakpoints=record_breakpoints, t_after=t_after,
                                  early_exit=early_exit, stable_outcomes=stable_outcomes,
-                                 progress=progress, chunk_size=chunk_size)
+                                 progress=progress, chunk_size=chunk_size, ground=ground)
     table = summarize_runs(runs)
     return (table, runs) if return_runs else table
 

@@ -38,7 +38,7 @@ time_overturn [s], time_end [s], nfev, steps, rejected_steps
 
 
 # ------------------------------------------------------------------ engine
-def _sweep_arrays(records, rec_idx, specs, solver, t_after, early_exit, progress, chunk_size):
+def _sweep_arrays(records, rec_idx, specs, solver, t_after, early_exit, progress, chunk_size, ground=None):
     """Kernel calls for rows with prepared KernelSpecs: one sweep per kernel,
     the records' samples concatenated in one array and each row's header
     pointing at its record.  Returns (status, MET, YF, interrupted)."""
@@ -66,6 +66,9 @@ def _sweep_arrays(records, rec_idx, specs, solver, t_after, early_exit, progress
         HDR[:, L.X_N] = [records[k].npts for k in ri]
         HDR[:, L.X_DUR] = [records[k].duration for k in ri]
         HDR[:, L.X_OFFSET] = offsets[ri]
+        if ground is not None:
+            ground.fill_header(HDR[0], specs[rows[0]].par[L.P_G])
+            HDR[:, L.S_BLOCK:] = HDR[0, L.S_BLOCK:]
         OPT = np.tile(solver.options(0.0, early_exit), (m, 1))
         OPT[:, L.O_T_END] = HDR[:, L.X_DUR] + t_after
         Y0 = np.zeros((m, specs[rows[0]].n_state))
@@ -81,9 +84,12 @@ def _sweep_arrays(records, rec_idx, specs, solver, t_after, early_exit, progress
 
 
 def rows_sweep(records, rec_idx, b, s, wall_idx, walls, *, e, solver, t_after, early_exit,
-                progress, chunk_size):
+                progress, chunk_size, ground=None):
     """Run rows (record index, half-width, slenderness, wall index), grouped
-    so that each kernel runs once; returns the per-run DataFrame."""
+    so that each kernel runs once; returns the per-run DataFrame.  On a
+    sloping ``ground`` the closed-form early decisions are off."""
+    if ground is not None:
+        early_exit = False
     n = rec_idx.size
     h = b / s
     alpha = np.arctan2(b, h)
@@ -96,11 +102,15 @@ def rows_sweep(records, rec_idx, b, s, wall_idx, walls, *, e, solver, t_after, e
         body = bodies.get(key)
         if body is None:
             body = bodies[key] = RigidBlock.rectangle(b[i], h[i], e=e)
+            if ground is not None:
+                ground.check_scene(body)
+                for k in set(rec_idx.tolist()):
+                    ground.check_lift_off(body, records[k].pga)
         specs.append(registry.select(body, walls[wall_idx[i]]))
         pvals[i] = body.p
         evals[i] = body.e
     args = (records, rec_idx, specs, solver, t_after)
-    status, MET, YF, interrupted = _sweep_arrays(*args, early_exit, progress, chunk_size)
+    status, MET, YF, interrupted = _sweep_arrays(*args, early_exit, progress, chunk_size, ground)
     if early_exit:
         # Defensive check: an early "safe:bounded" decision must leave the
         # block inside its potential well (|theta| < alpha).  The kernel
@@ -110,7 +120,7 @@ def rows_sweep(records, rec_idx, b, s, wall_idx, walls, *, e, solver, t_after, e
         bad = np.flatnonzero((status == L.SAFE_BOUNDED) & (np.abs(YF[:, 0]) >= alpha))
         if bad.size:
             sub = (records, rec_idx[bad], [specs[i] for i in bad], solver, t_after)
-            st2, met2, _yf, _ = _sweep_arrays(*sub, False, False, chunk_size)
+            st2, met2, _yf, _ = _sweep_arrays(*sub, False, False, chunk_size, ground)
             status[bad] = st2
             MET[bad] = met2
     finished = status != L.RUNNING
@@ -146,7 +156,7 @@ def spectrum_solver(solver, rtol, atol, dt, record_breakpoints=None):
 def rocking_spectrum_runs(records, slenderness=None, half_widths=None, walls=None, *, e=None,
                           unit=None, solver=None, rtol=None, atol=None, dt=None,
                           record_breakpoints=None, t_after=T_AFTER, early_exit=True,
-                          stable_outcomes=STABLE_OUTCOMES, progress=True, chunk_size=None):
+                          stable_outcomes=STABLE_OUTCOMES, progress=True, chunk_size=None, ground=None):
     """Every run of the rocking-spectrum study, one row per record x wall x
     size x slenderness (columns in ``RUN_COLUMNS``).  Arguments as in
     :func:`rocking_spectrum`."""
@@ -164,15 +174,18 @@ def rocking_spectrum_runs(records, slenderness=None, half_widths=None, walls=Non
     if chunk_size is not None:
         chunk_size = V.integer("chunk_size", chunk_size, 1)
     check_run_length(records, solver, t_after)
+    from fastrock.model.ground import as_ground
+    ground = as_ground(ground)
     R, W, B, S = np.meshgrid(np.arange(len(records)), np.arange(len(walls)), b_grid, s_grid,
                              indexing="ij")
     df = rows_sweep(records, R.ravel(), B.ravel(), S.ravel(), W.ravel(), walls, e=e,
                      solver=solver, t_after=t_after, early_exit=early_exit, progress=progress,
-                     chunk_size=chunk_size)
+                     chunk_size=chunk_size, ground=ground)
     df.insert(df.columns.get_loc("outcome") + 2, "stable", df["outcome"].isin(stable_outcomes))
     df.attrs.update(solver=solver.name, t_after=t_after, early_exit=early_exit,
                     stable_outcomes=tuple(stable_outcomes),
-                    walls=[label_of_wall(w) for w in walls])
+                    walls=[label_of_wall(w) for w in walls],
+                    slope=ground.slope if ground is not None else 0.0)
     return df
 
 
