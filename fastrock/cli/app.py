@@ -248,10 +248,10 @@ def build_parser():
     s.set_defaults(func=cmd_simulate)
 
     s = sub.add_parser("warmup", help="compile (or load from cache) the kernels ahead of a sweep")
+    from fastrock.running.registry import MODELS
     s.add_argument("models", nargs="*", default=None,
-                   help="models to compile: registry names (rigid, rigid_wall, rigid_friction, contact, flexible, "
-                        "flexible_friction, two_spring, switching, linear_sdof) or the families wall, friction, "
-                        "foundation (default: every model)")
+                   help=f"models to compile: registry names ({', '.join(MODELS)}) or the families wall, "
+                        "friction, foundation (default: every model)")
     s.set_defaults(func=cmd_warmup)
 
     for register in _extra_commands():
