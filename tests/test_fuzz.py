@@ -36,12 +36,9 @@ SAMPLE = {"rigid": 512, "wall": 512, "friction": 512, "flexible": 128, "flexible
 KNOWN = {
     ("wall", "invariants"): "issue #14: violated:energy:fall, 1 of 512 cases (energy rises by more than "
                             "1e-6 + 100 rtol between two history rows of an overturning fall)",
-    # contact, commit cfdb6a0 (replayed): walls at small gaps end failed:transition-loop / face-contact:
-    # contact:14:7 15 cells (gap 3.9e-9 m, Friction(inf, lift_off="flight"), e = 0.8, one-sine),
-    # contact:14:2 3 cells (gap 9.4e-4 * 2h, Friction(0.507, lift_off="flight"), one-cosine, from
-    # a_p/(g tan alpha) = 1.56), contact:14:5 3 cells (gap 1e-5 * 2h, Friction(0.37), a_p/(g tan alpha) = 30)
-    ("contact", "status"): "issue #14: failed:transition-loop 20 + failed:face-contact 1, 21 of 256 cases "
-                           "(contact:14:7, :2, :5: a wall at a small gap, see bench/README.md)",
+    # contact: the former strict xfail (contact:14:7, :2, :5, walls at small gaps: failed:transition-loop
+    # 20 + failed:face-contact 1) passes since the small-gap rules of kernels/contact.py (commit 40e5cc8,
+    # tests/test_contact_small_gap.py)
 }
 
 _RESULTS = {}
