@@ -23,7 +23,7 @@ def test_every_model_has_a_warm_up_scene_and_a_typical_time():
 def test_warmup_compiles_every_model():
     code = ("import json, sys, numba\n"
             "from fastrock.running.warmup import warmup\n"
-            "from fastrock import registry\n"
+            "from fastrock.running import registry\n"
             "done = [n for n, _s in warmup()]\n"
             "ready = {n: bool(registry.MODELS[n].load().__dict__[registry.MODELS[n].sweep_entry].signatures)"
             " for n in done}\n"
