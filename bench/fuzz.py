@@ -56,9 +56,12 @@ pair failed, the cell gets ``violated:<invariant>``.
 * ``early_exit``: the spectrum run (``early_exit=True``) against ``simulate`` of the same cell
   (``early_exit=False``): same outcome (README: the early decisions are exact).
 * ``energy``: in ``simulate`` runs, after the pulse has ended, the mechanical energy computed
-  from the history never rises by more than ``ENERGY_TOL`` (relative to the energy scale) above
-  its running minimum.  Rigid, wall: E = theta'^2/(2p^2) + cos(alpha - |theta|) - cos(alpha)
-  [M g R].  Friction: (d' + Y_G theta')^2/2 + (X_G theta')^2/2 + I_G theta'^2/(2M) + g Y_G.
+  from the history never rises between two consecutive rows by more than ``ENERGY_TOL`` +
+  ``ENERGY_TOL_RTOL`` rtol of the energy scale (max |E| over the run, at least the barrier
+  1 - cos(alpha); rigid, wall: per pair of rows at least the size |T| + |V| of E's kinetic and
+  potential terms, which the solver's relative error control bounds: in an overturning fall they
+  reach M g R while E stays near the barrier).  Rigid, wall: E = theta'^2/(2p^2) +
+  cos(alpha - |theta|) - cos(alpha) [M g R].  Friction: (d' + Y_G theta')^2/2 + (X_G theta')^2/2 + I_G theta'^2/(2M) + g Y_G.
   Flexible (all three): kinetic energy of the mass, base and rotary inertias with the base slip,
   + K u^2/2 + gravity (physics.md 3.4, 4.4; flexible_wall: no slip, the base mass of full
   contact).  Contact: the history's d, z are the base midpoint P, the CM is P + h (sin theta,
@@ -69,7 +72,10 @@ pair failed, the cell gets ``violated:<invariant>``.
   outcome mismatches are counted under ``stiff_mismatch``, never a failure.
 
 Families: rigid, wall (rigid_wall), friction (rigid_friction), flexible, flexible_friction
-(lift_off "stop" or "hold"), foundation (two-spring, switching, linear), flexible_wall (a
+(lift_off "stop" or "hold"), foundation (two-spring, switching, linear; the mass is lowered
+where a spring or dashpot constant would pass the front end's 1e12, which changes no
+dimensionless number, and a fixed step is coarsened to fit half the default step budget, with
+at least 10 steps per period of the fastest mode), flexible_wall (a
 FlexibleBody drawn as in flexible with a Wall drawn as in wall, gap > 0 only: gap 0 is refused
 for flexible bodies) and contact (RigidBlock.rectangle, a wall with gap > 0 and height None or
 >= 2h, Friction(mu) with lift_off "stop" or "flight", mu 0.05-2, or mu = inf with "flight" in
@@ -247,7 +253,27 @@ def draw_batch(family, seed, batch, chunk=32):
     P["scale_k"] = _logu(rng, 0.03, 30.0)
     P["tall_side"] = int(rng.choice([-1, 1]))
     P["tall_gap"] = float(rng.uniform(1.0, 3.0))
+    if family == "foundation":
+        _clip_foundation_mass(P)
     return P
+
+
+def _clip_foundation_mass(P):
+    """Lower the mass of a foundation batch whose spring or dashpot constants would exceed 1e12,
+    the largest magnitude the front end accepts, at scale 1 or at the scale check's k (two-spring
+    k_v goes as M/k, k_t and c_t of the others as M k and M k^1.5).  The constants come from
+    ``from_vibration``, so every force is proportional to M and M changes no dimensionless number
+    of the run (omega/p, zeta, e_f, the uplift rotation M g b / k_t): only the units.  The front
+    end is right to refuse more: k_v = 1e12 N/m is five times the axial stiffness of a steel
+    column 1 m^2 in section and 1 m high (2e11 N/m), and the draw's mass does not follow its size
+    (foundation:2026:20 put 1.8 t on a block 6 mm wide and 17 cm tall, 230 m deep in steel, on
+    corner springs of 1.9e12 N/m)."""
+    unit = dict(P, mass=1.0)
+    per_kg = 0.0
+    for k in (1.0, P["scale_k"]):
+        fd = build_scene(unit, k)["foundation"]
+        per_kg = max([per_kg] + [abs(float(getattr(fd, f.name))) for f in dataclasses.fields(fd)])
+    P["mass"] = min(P["mass"], 0.999e12 / per_kg)
 
 
 # ----------------------------------------------------------------------- building
@@ -324,7 +350,19 @@ def build_scene(P, scale=1.0, variant=None):
             if hasattr(fd, "k_v"):
                 I0 = P["mass"] * body.g * math.hypot(body.b, body.h) / body.p ** 2
                 w = max(w, math.sqrt(2 * fd.k_v / P["mass"]), math.sqrt(4 * fd.k_v * body.b ** 2 / I0))
-        kw["solver"] = fr.Solver(dt=2 * math.pi / w / P["dt_per"])
+        steps_per_period = P["dt_per"]
+        if fd is not None:
+            # The corner springs' vertical mode sets w far above the rocking ones (sqrt(2 k_v/M) =
+            # 3.2e3 rad/s, p = 1.6 rad/s in foundation:2026:15), and dt_per steps per period of it
+            # over the longest run (pulse + t_after) can exceed the default step budget, which the
+            # front end refuses up front naming max_steps (2.8e6 steps there).  A user who fixes a
+            # step takes one the budget allows: here half of it (events add a few steps), with at
+            # least 10 steps per period of w (the fixed-step DP5 is stable up to w dt = 3.3).
+            span = max(fr.Pulse(1.0, f, 1, P["pulse"], amplitude_unit="g_tan_alpha",
+                                frequency_unit="omega_p/p").end_time(body) for f in P["freqs"]) + T_AFTER * tscale
+            budget = 0.5 * fr.Solver().max_steps
+            steps_per_period = max(10.0, min(steps_per_period, budget * 2 * math.pi / (w * span)))
+        kw["solver"] = fr.Solver(dt=2 * math.pi / w / steps_per_period)
     else:
         kw["solver"] = fr.Solver(rtol=P["rtol"], eps_t=1e-9 * tscale, eps_omega=1e-9 / tscale)
     kw["t_after"] = T_AFTER * tscale
@@ -699,13 +737,29 @@ def energy(history, body, scene, family):
     return None
 
 
+def energy_terms(history, body, family):
+    """Per history row, the size of the terms that make up E, |T| + |V| [J/kg] (rigid, wall;
+    None for the other families): the scale of the integration error of E (see ``_sim_checks``)."""
+    if family not in ("rigid", "wall"):
+        return None
+    g = body.g
+    R = g / body.p ** 2
+    th = history["theta"].to_numpy()
+    w = history["theta_dot"].to_numpy()
+    return g * R * (w * w / (2 * body.p ** 2) + np.abs(np.cos(body.alpha - np.abs(th)) - np.cos(body.alpha)))
+
+
 def energy_growth(t, E, t_free, scale, theta=None, alpha=None):
     """Largest rise of E between consecutive history rows after t_free, relative to ``scale``:
     (upright, fall), where "fall" are the pairs of rows with |theta| > alpha in either (past the
-    unstable equilibrium, on the way to overturning), and "upright" all others."""
+    unstable equilibrium, on the way to overturning), and "upright" all others.  ``scale`` is a
+    number or one per row (a pair is then measured by the larger of its two rows)."""
     m = t > t_free
     if m.sum() < 2:
         return 0.0, 0.0
+    if np.ndim(scale):
+        sc = np.asarray(scale)[m]
+        scale = np.maximum(sc[1:], sc[:-1])
     de = np.diff(E[m]) / scale
     if theta is None:
         fall = np.zeros(de.size, bool)
@@ -920,6 +974,15 @@ def _sim_checks(res, P, main, limit):
         g = body.g
         R = g / body.p ** 2
         escale = max(float(np.nanmax(np.abs(E))), g * R * (1 - math.cos(body.alpha)))
+        # The solver bounds the error of theta' relative to theta' itself, so a step's energy error
+        # is about rtol times the kinetic and potential terms, not rtol times their sum E.  In an
+        # overturning fall the two terms reach ~ M g R while E stays near the barrier 1 - cos(alpha):
+        # seed 2026 had falls ending at E/(|T| + |V|) = 3e-5..3e-3, where 1e-6 + 100 rtol of E
+        # flagged rises of 0.16..0.57 rtol of |T| + |V| (up to 3.9e3 rtol of E).  So each pair of rows is
+        # measured against the larger of E's scale and the size of its terms (rigid, wall).
+        terms = energy_terms(h, body, fam)
+        if terms is not None:
+            escale = np.maximum(escale, terms)
         rtol = TIGHT_RTOL if scene["solver"].dt else scene["solver"].rtol
         tol = ENERGY_TOL + ENERGY_TOL_RTOL * rtol
         grow, fall = energy_growth(h["t"].to_numpy(), E, t_free, escale, h["theta"].to_numpy(), body.alpha)
@@ -990,12 +1053,12 @@ def failure_kinds(summ):
 
 def format_table(summaries):
     kinds = sorted({k for s in summaries for k in s["kinds"]})
-    lines = ["| family | cases | batches | failing cases | " + " | ".join(kinds) + " | time [s] |",
+    lines = ["| family | cases | batches | failing cases | " + "".join(f"{k} | " for k in kinds) + "time [s] |",
              "|---|---:|---:|---:|" + "---:|" * len(kinds) + "---:|"]
     for s in summaries:
         lines.append(f"| {s['family']} | {s['cases']} | {s['batches']} | {s['failing_cases']} | "
-                     + " | ".join(str(s["kinds"].get(k, 0)) for k in kinds)
-                     + f" | {sum(s['batch_times']):.0f} |")
+                     + "".join(f"{s['kinds'].get(k, 0)} | " for k in kinds)
+                     + f"{sum(s['batch_times']):.0f} |")
     return "\n".join(lines)
 
 
