@@ -6,7 +6,7 @@ import pandas as pd
 
 from fastrock import _validate as V
 from fastrock.model import excitation as X
-from fastrock.model.ground import CLOSED_FORM_MODELS, GROUNDED_MODELS, as_ground
+from fastrock.model.ground import as_ground
 from fastrock.running import registry
 from fastrock.running.outcomes import outcome_of, status_of, warn_unstable
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
@@ -181,8 +181,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     ground = as_ground(ground)
     if ground is not None:
         ground.check_scene(body, friction=friction, flexible=spec.flexible, foundation=foundation)
-        if spec.name in CLOSED_FORM_MODELS:
-            early_exit = False      # their closed-form early decisions assume level ground
+        early_exit = False      # the early decisions assume level ground
     vertical = X.as_excitation(vertical, "vertical")
     signs = _signs(sign)
     t_after = V.run_time("t_after", V.non_negative("t_after", t_after))
@@ -209,8 +208,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         t_vertical = X.end_time(body, None, vertical)
     if ground is not None:
         ground.fill_header(hdr0, body.g)
-        if spec.name in GROUNDED_MODELS and vertical is None:
-            ground.check_lift_off(body, float(amp.max()))
+        ground.check_lift_off(body, float(amp.max()), spec.name, vertical)
     solver.check_fixed_steps(V.run_time("t_after", max(t_longest, t_vertical) + t_after,
                                         "the longest run (pulse plus t_after)"), "the longest run")
     opt = solver.options(0.0, early_exit)

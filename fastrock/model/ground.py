@@ -16,10 +16,6 @@ from ..constants import G_STANDARD
 from ..kernels import layout as L
 
 DIRECTIONS = ("horizontal", "slope")
-#: models whose early decisions use closed forms or energy bounds of free motion on level ground
-#: (free rocking; the flexible column's oscillation about u = 0): off on a slope
-CLOSED_FORM_MODELS = ("rigid", "rigid_wall", "rigid_body", "flexible", "flexible_wall", "flexible_friction",
-                      "flexible_flight")
 #: models that never leave the ground (no flight event without a vertical channel)
 GROUNDED_MODELS = ("rigid", "rigid_body")
 
@@ -103,26 +99,26 @@ class Ground:
                 raise ValueError(f"{where}: the flexible body cannot stand on it: at its static deflection "
                                  f"u = {self.static_deflection(body):.4g} m the column's moment lifts the "
                                  f"downhill corner (uplift margin {margin:.4g} m^2/s^2 per unit mass)")
-            if friction is not None and demand >= friction.mu_s:
-                raise ValueError(f"{where}: steeper than friction can hold at rest: tan(slope) = {demand:.4g} "
-                                 f">= mu_s = {friction.mu_s:g}")
-            return
-        alpha = getattr(body, "alpha2", body.alpha)     # the downhill (+x) side of an asymmetric body
-        if demand >= math.tan(alpha):
-            raise ValueError(f"{where}: the block cannot stand on it: tan(slope) = {demand:.4g} >= tan(alpha) = "
-                             f"{math.tan(alpha):.4g} of its downhill side (its centre of mass lies beyond the "
-                             "downhill corner)")
+        else:
+            alpha = getattr(body, "alpha2", body.alpha)     # the downhill (+x) side of an asymmetric body
+            if demand >= math.tan(alpha):
+                raise ValueError(f"{where}: the block cannot stand on it: tan(slope) = {demand:.4g} >= "
+                                 f"tan(alpha) = {math.tan(alpha):.4g} of its downhill side (its centre of mass "
+                                 "lies beyond the downhill corner)")
         if friction is not None and demand >= friction.mu_s:
             raise ValueError(f"{where}: steeper than friction can hold at rest: tan(slope) = {demand:.4g} >= "
                              f"mu_s = {friction.mu_s:g}")
 
-    def check_lift_off(self, body, peak_horizontal):
-        """The two-sided rocking model assumes the ground pushes: on a slope
-        the normal gravity g cos(phi) less the normal part of the horizontal
+    def check_lift_off(self, body, peak_horizontal, model=None, vertical=None):
+        """The two-sided rocking models (``GROUNDED_MODELS``; ``model`` None:
+        check whatever the model) assume the ground pushes: on a slope the
+        normal gravity g cos(phi) less the normal part of the horizontal
         shaking, a_h sin(phi), must stay positive.  Refuse stronger shaking
         (the contact model, ``Friction(..., lift_off="flight")``, follows
-        the body into flight)."""
-        if self.is_level or self.direction == "slope":
+        the body into flight).  With a vertical channel their flight event
+        watches G' itself."""
+        if (self.is_level or self.direction == "slope" or vertical is not None
+                or (model is not None and model not in GROUNDED_MODELS)):
             return
         limit = body.g * math.cos(self.slope) / math.sin(self.slope)
         if peak_horizontal >= limit:

@@ -15,11 +15,11 @@ import pandas as pd
 
 from fastrock.kernels import layout as L
 from fastrock.model import excitation as X
-from fastrock.model.ground import CLOSED_FORM_MODELS, GROUNDED_MODELS, as_ground
+from fastrock.model.ground import as_ground
 from fastrock.running import registry
 from fastrock.running.outcomes import outcome_of, status_of, warn_unstable
 from fastrock.running.result import (METRIC_COLUMNS, INTEGER_METRICS, flexible_metrics, flight_metrics,
-                                     friction_metrics, run_inputs)
+                                     friction_metrics, initial_state, run_inputs)
 from fastrock.running.scene import Scene
 from fastrock.running.solver import make_solver
 from fastrock.running.sweep import run_sweep
@@ -65,31 +65,21 @@ def _prepare(i, scene, early_exit):
     body = registry.model_body(scene.body)      # a symmetric RigidBody runs as its RigidBlock
     spec = registry.select(body, scene.wall, scene.friction, scene.foundation, scene.mass)
     ground = as_ground(scene.ground)
-    exit_early = early_exit
     if ground is not None:
         ground.check_scene(body, friction=scene.friction, flexible=spec.flexible, foundation=scene.foundation)
-        if spec.name in CLOSED_FORM_MODELS:
-            exit_early = False
+        early_exit = False      # the early decisions assume level ground
     solver = make_solver(scene.solver, None, None, None)
     vertical = X.match_components(scene.excitation, scene.vertical)
     hdr, smp, opt, _te, _cap = run_inputs(body, scene.excitation, vertical, scene.duration, scene.t_after,
-                                          None, None, solver, exit_early, ground)
-    if ground is not None and spec.name in GROUNDED_MODELS and vertical is None:
-        ground.check_lift_off(body, X.channel_peak(hdr, smp))
+                                          None, None, solver, early_exit, ground)
+    if ground is not None:
+        ground.check_lift_off(body, X.channel_peak(hdr, smp), spec.name, vertical)
     if scene.foundation is not None:
         from fastrock.model.foundation import block_inertia
         y0 = np.asarray(scene.foundation.initial_state(block_inertia(body, scene.mass), scene.theta0,
                                                        scene.dtheta0), float)
     else:
-        if abs(scene.theta0) >= body.theta_over:
-            raise ValueError(f"theta0 must satisfy |theta0| < theta_over = {body.theta_over}, got {scene.theta0}")
-        if scene.wall is not None:
-            scene.wall.check_initial(scene.theta0, body)
-        y0 = np.zeros(spec.n_state)
-        y0[spec.theta_index] = scene.theta0
-        y0[spec.theta_index + 1] = scene.dtheta0
-        if ground is not None:
-            ground.initial_state(body, spec, y0)      # a flexible column at its static deflection
+        y0 = initial_state(spec, body, scene.theta0, scene.dtheta0, scene.wall, ground)
     return spec, y0, hdr, smp, opt, solver
 
 

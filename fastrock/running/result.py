@@ -185,6 +185,23 @@ def events_frame(lg, cnt):
 MAX_HISTORY = 50_000_000
 
 
+def initial_state(spec, body, theta0, dtheta0, wall=None, ground=None):
+    """The kernel's initial state of a run released at (theta0, dtheta0), checked against the
+    body and the wall; on a slope a flexible column starts at its static deflection."""
+    theta0 = V.finite("theta0", theta0)
+    dtheta0 = V.finite("dtheta0", dtheta0)
+    if abs(theta0) >= body.theta_over:
+        raise ValueError(f"theta0 must satisfy |theta0| < theta_over = {body.theta_over}, got {theta0}")
+    if wall is not None:
+        wall.check_initial(theta0, body)
+    y0 = np.zeros(spec.n_state)
+    y0[spec.theta_index] = theta0
+    y0[spec.theta_index + 1] = dtheta0
+    if ground is not None:
+        ground.initial_state(body, spec, y0)
+    return y0
+
+
 def run_inputs(body, excitation, vertical, duration, t_after, t_eval, history_capacity, solver,
                early_exit, ground=None):
     """Kernel inputs of one run: excitation header and samples, solver options

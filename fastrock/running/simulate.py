@@ -12,14 +12,14 @@ from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.running import registry
 from fastrock.running.outcomes import MODE_NAMES, outcome_of, status_of, warn_unstable
-from fastrock.model.ground import CLOSED_FORM_MODELS, GROUNDED_MODELS, as_ground
+from fastrock.model.ground import as_ground
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
 from fastrock.running.sweep import call_kernel
 from fastrock.kernels import layout as L
 from fastrock.kernels.config import DEBUG
 from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
 from fastrock.running.result import (SimulationResult, ground_at, events_frame, flight_metrics,
-    friction_metrics, metrics_dict, run_inputs)
+    friction_metrics, initial_state, metrics_dict, run_inputs)
 
 
 def _history(hist, hdr, smp, spec, body):
@@ -129,8 +129,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     ground = as_ground(ground)
     if ground is not None:
         ground.check_scene(body, friction=friction, flexible=spec.flexible, foundation=foundation)
-        # the closed-form early decisions of the rigid families assume level ground
-        early_exit = early_exit if spec.name not in CLOSED_FORM_MODELS else False
+        early_exit = False      # the early decisions assume level ground
     vertical = X.match_components(excitation, vertical, resample_vertical)
     if foundation is not None:
         from fastrock.running.foundation import simulate_foundation
@@ -141,21 +140,11 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     solver = make_solver(solver, rtol, atol, dt, **kw)
     excitation = X.as_excitation(excitation)
     vertical = X.as_excitation(vertical, "vertical")
-    theta0 = V.finite("theta0", theta0)
-    dtheta0 = V.finite("dtheta0", dtheta0)
-    if abs(theta0) >= body.theta_over:
-        raise ValueError(f"theta0 must satisfy |theta0| < theta_over = {body.theta_over}, got {theta0}")
-    if wall is not None:
-        wall.check_initial(theta0, body)
+    y0 = initial_state(spec, body, theta0, dtheta0, wall, ground)
     hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
                                         history_capacity, solver, early_exit, ground)
-    if ground is not None and spec.name in GROUNDED_MODELS and vertical is None:
-        ground.check_lift_off(body, X.channel_peak(hdr, smp))
-    y0 = np.zeros(spec.n_state)
-    y0[spec.theta_index] = theta0
-    y0[spec.theta_index + 1] = dtheta0
     if ground is not None:
-        ground.initial_state(body, spec, y0)      # a flexible column at its static deflection
+        ground.check_lift_off(body, X.channel_peak(hdr, smp), spec.name, vertical)
     while True:
         y = y0.copy()
         met = np.zeros(L.N_MET)

@@ -11,7 +11,6 @@ from fastrock.running.outcomes import outcome_of, status_of
 from fastrock.constants import G_STANDARD
 from fastrock.analyses.rocking_spectrum.inputs import gap_of_wall
 from fastrock.kernels import layout as L
-from fastrock.model.ground import CLOSED_FORM_MODELS, GROUNDED_MODELS
 from fastrock.analyses.fragility import COLLAPSE_OUTCOMES
 from fastrock.studies.definition import StudyError
 from fastrock.studies.output import arrow_table
@@ -103,9 +102,9 @@ class Plan:
         for (b, v), spec in prep.specs.items():       # the rocking model on a slope stays on the ground
             gnd = prep.effects[v].get("ground")
             rows = (B == b) & (W == v)
-            if gnd is not None and spec.name in GROUNDED_MODELS and rows.any():
+            if gnd is not None and rows.any():
                 try:
-                    gnd.check_lift_off(prep.bodies[b], float(np.max(np.abs(scale[rows]) * pga[R[rows]])))
+                    gnd.check_lift_off(prep.bodies[b], float(np.max(np.abs(scale[rows]) * pga[R[rows]])), spec.name)
                 except ValueError as exc:
                     raise StudyError(f"body {b} with variant {prep.variant_names[v]!r}: {exc}") from None
         self.im = {"pga_g": scale * pga[R] / G_STANDARD, "pgv": scale * pgv[R],
@@ -158,8 +157,7 @@ class Plan:
             gnd = prep.effects[self.var[i]].get("ground")
             if gnd is not None:
                 gnd.fill_header(HDR[j], prep.bodies[self.body[i]].g)
-                if spec0.name in CLOSED_FORM_MODELS:     # closed forms of level ground
-                    OPT[j, L.O_EARLY_EXIT] = 0.0
+                OPT[j, L.O_EARLY_EXIT] = 0.0     # the early decisions assume level ground
         return {"chunk": chunk.id, "module": spec0.module, "kernel": spec0.name,
                 "rows": rows.astype(np.int64), "theta_index": int(spec0.theta_index),
                 "Y0": np.array([prep.y0s[self.body[i], self.var[i]] for i in rows], float).reshape(m, -1),
