@@ -38,6 +38,7 @@ from fastrock.model.ground import Ground
 from fastrock.model.foundation import LinearVibration, SwitchingFoundation, TwoSpringFoundation
 from fastrock.io.ground_motion import GroundMotion
 from fastrock.io.readers import read_record
+from fastrock.io.outline import read_outline
 from fastrock.running.solver import Solver
 from fastrock.running.result import SimulationResult
 from fastrock.running.simulate import simulate
@@ -63,7 +64,7 @@ __all__ = [
     # bodies, scenes and excitations
     "RigidBlock", "RigidBody", "FlexibleBody", "housner_restitution", "Wall", "Friction", "Ground",
     "TwoSpringFoundation", "SwitchingFoundation", "LinearVibration",
-    "Pulse", "SampledMotion", "GroundMotion", "read_record", "Scene", "G_STANDARD",
+    "Pulse", "SampledMotion", "GroundMotion", "read_record", "read_outline", "Scene", "G_STANDARD",
     # running
     "Solver", "simulate", "run_batch", "SimulationResult", "simulate_foundation",
     # analyses and studies

@@ -13,8 +13,47 @@ from fastrock.cli.output import (EXIT_INTERRUPTED, MAX_GRID_RUNS, add_output_opt
     interrupted_exit, write_table, wrote)
 
 
+def _shape_body(args):
+    """A RigidBody from --outline or --mesh, printed so the user can check the reduction."""
+    from fastrock.model.rigid_body import RigidBody
+    given = [o for o, v in (("--outline", args.outline), ("--mesh", args.mesh)) if v is not None]
+    if len(given) == 2:
+        raise ValueError("give --outline or --mesh, not both")
+    clash = [o for o, v in (("--b", args.b), ("--h", args.h), ("--omega-n-over-p", args.omega_n_over_p))
+             if v is not None]
+    if clash:
+        raise ValueError(f"{given[0]} defines the body; it takes no {', '.join(clash)}")
+    mass = {"density": args.density} if args.density is not None else {"mass": args.mass}
+    if args.outline is not None:
+        from fastrock.io.outline import read_outline
+        if args.density is not None:
+            if args.thickness is None:
+                raise ValueError("--density with --outline needs --thickness [m] (out of plane)")
+            mass["thickness"] = args.thickness
+        body = RigidBody.from_polygon(read_outline(args.outline), pose=args.pose, e=args.e, **mass)
+    else:
+        if args.thickness is not None:
+            raise ValueError("--thickness is for --outline; a mesh has its own depth")
+        body = RigidBody.from_mesh(args.mesh, axis=_vector("--mesh-axis", args.mesh_axis),
+                                   up=_vector("--mesh-up", args.mesh_up), pose=args.pose, e=args.e, **mass)
+    print(body.describe())
+    return body
+
+
+def _vector(option, text):
+    try:
+        v = [float(t) for t in text.split(",")]
+    except ValueError:
+        v = []
+    if len(v) != 3:
+        raise ValueError(f"{option} must be three numbers x,y,z, got {text!r}")
+    return tuple(v)
+
+
 def _body(args):
     from fastrock.model.bodies import FlexibleBody, RigidBlock
+    if getattr(args, "outline", None) is not None or getattr(args, "mesh", None) is not None:
+        return _shape_body(args)
     if getattr(args, "omega_n_over_p", None) is not None:
         if args.b is not None or args.h is not None:
             raise ValueError("--omega-n-over-p (flexible body) takes --alpha and --p, not --b/--h")
@@ -70,6 +109,21 @@ def _add_body_options(p):
     g.add_argument("--b", type=float, help="half-width [m] (with --h: rectangle, overrides --alpha/--p; default: use --alpha/--p)")
     g.add_argument("--h", type=float, help="half-height [m] (with --b; default: use --alpha/--p)")
     g.add_argument("--e", type=float, help="ground impact restitution e [-] (default: Housner, 1 - 1.5 sin^2 alpha)")
+    sb = p.add_argument_group("rigid body from a shape (RigidBody: each side its own alpha and p)")
+    sb.add_argument("--outline", metavar="FILE",
+                    help="2D outline in the shaking plane: a text/CSV file of x y vertices [m], one per "
+                         "row (default: a rectangle from --alpha/--p or --b/--h)")
+    sb.add_argument("--mesh", metavar="FILE",
+                    help="closed 3D surface (OBJ or STL) [m], cut by the shaking plane (default: none)")
+    sb.add_argument("--mesh-axis", default="0,1,0",
+                    help="normal of the shaking plane in the mesh's coordinates, x,y,z (default 0,1,0)")
+    sb.add_argument("--mesh-up", default="0,0,1",
+                    help="the mesh's vertical, x,y,z (default 0,0,1)")
+    sb.add_argument("--density", type=float,
+                    help="density [kg/m^3] (with --outline also --thickness; default: mass from --mass)")
+    sb.add_argument("--thickness", type=float, help="out-of-plane thickness of an --outline [m] (no default)")
+    sb.add_argument("--pose", type=float, default=0.0,
+                    help="rotation of the shape before it settles on its lowest facet [rad] (default 0)")
     fb = p.add_argument_group("flexible body (elastic column on a rocking base; docs, theory: "
                               "'Flexible rocking body')")
     fb.add_argument("--omega-n-over-p", type=float,
@@ -100,7 +154,8 @@ def _add_body_options(p):
                     help="its small-amplitude rocking vibration in full contact [rad/s] (no default: "
                          "required with --foundation)")
     fd.add_argument("--foundation-zeta", type=float, default=0.0, help="its damping ratio [-] (default 0)")
-    fd.add_argument("--mass", type=float, default=1.0, help="block mass [kg] (default 1)")
+    fd.add_argument("--mass", type=float, default=1.0,
+                    help="body mass [kg] (foundations; a shape without --density) (default 1)")
     f = p.add_argument_group("friction (sliding)")
     f.add_argument("--mu-s", type=float, help="static friction coefficient mu_s [-] (default: no sliding)")
     f.add_argument("--mu-k", type=float, help="kinetic friction coefficient mu_k [-] (default mu_s)")

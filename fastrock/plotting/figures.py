@@ -88,6 +88,11 @@ def describe_body(body):
     if kind == "FlexibleBody":
         return (f"flexible body: alpha = {body.alpha:.3g} rad, p = {body.p:.3g} rad/s, "
                 f"omega_n/p = {body.omega_n_over_p:.3g}, zeta = {body.zeta:.3g}")
+    if kind == "RigidBody" and not body.is_symmetric:
+        return (f"rigid body: alpha1/2 = {body.alpha1:.3g}/{body.alpha2:.3g} rad, "
+                f"p1/2 = {body.p1:.3g}/{body.p2:.3g} rad/s, e12/21 = {body.e12:.3g}/{body.e21:.3g}")
+    if kind == "RigidBody":
+        body = body.to_block()
     size = (f"{2 * body.b:.3g} m x {2 * body.h:.3g} m, " if getattr(body, "b", None) and getattr(body, "h", None)
             else "")
     return f"rigid block {size}alpha = {body.alpha:.3g} rad, p = {body.p:.3g} rad/s, e = {body.e:.3g}"

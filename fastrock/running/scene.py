@@ -174,15 +174,19 @@ _RIGID_BODY_COMMON = {"e", "g", "theta_over"}
 
 def rigid_body_from_table(d, base=None):
     """A RigidBody from a [body] table of type "rigid-body": its numbers (mass, inertia, b1, h1,
-    b2, h2, and top, top_radius), a 2D outline (``vertices`` [m] with density [kg/m^3] and
+    b2, h2, and top, top_radius), a 2D outline (``vertices`` [m], a list of [x, y] pairs or the
+    name of an outline file relative to the scene file (:func:`fastrock.read_outline`), with density [kg/m^3] and
     thickness [m], or mass [kg]; pose [rad]) or a mesh file (``mesh``, a path relative to the
     scene file; axis, up, density or mass, pose)."""
     from fastrock.model.rigid_body import RigidBody
     if "vertices" in d:
         kw = only_keys(d, "body", {"vertices", "density", "thickness", "mass", "pose"} | _RIGID_BODY_COMMON)
         vertices = kw.pop("vertices")
+        if isinstance(vertices, str) and vertices:          # an outline file beside the scene file
+            from fastrock.io.outline import read_outline
+            vertices = read_outline(Path(base or ".") / vertices).tolist()
         if not isinstance(vertices, list) or not all(isinstance(v, list) and len(v) == 2 for v in vertices):
-            raise ValueError("[body] vertices must be a list of [x, y] pairs [m]")
+            raise ValueError("[body] vertices must be a list of [x, y] pairs [m] or an outline file name")
         return _build(lambda **k: RigidBody.from_polygon(vertices, **k), kw, "body")
     if "mesh" in d:
         kw = only_keys(d, "body", {"mesh", "axis", "up", "density", "mass", "pose"} | _RIGID_BODY_COMMON)
