@@ -225,13 +225,6 @@ def test_flexible_body_that_cannot_stand_is_refused():
         fr.simulate(soft, fr.Pulse(0.01, 1.0), ground=ground)
 
 
-def test_foundation_refused_on_a_slope():
-    from fastrock.model.foundation import TwoSpringFoundation
-    fnd = TwoSpringFoundation.from_vibration(BLOCK, 40.0, 0.05, mass=50.0)
-    with pytest.raises(ValueError, match="slope.*foundation"):
-        fr.simulate(BLOCK, fr.Pulse(0.1, 1.0), foundation=fnd, mass=50.0, ground=fr.Ground(0.05))
-
-
 def test_lift_off_refused_for_the_rocking_model():
     blk = fr.RigidBlock(alpha=1.2, p=2.0, e=0.0)
     with pytest.raises(ValueError, match="lifts the block off"):

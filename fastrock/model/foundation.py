@@ -97,6 +97,41 @@ def block_inertia(body, mass=1.0):
     return BlockInertia(M=M, b=b, h=h, R=R, I_0=I0, I_G=I_G, I_C=I_G + M * h * h, g=g)
 
 
+
+# --------------------------------------------------------------------------- slope
+def _on_slope(ground):
+    return ground is not None and not ground.is_level
+
+
+def _check_slope_release(ground, theta0, dtheta0):
+    if theta0 != 0.0 or dtheta0 != 0.0:
+        raise ValueError(f"theta0 = {theta0}, dtheta0 = {dtheta0}: on a slope a block on a flexible "
+                         "foundation starts at rest in its static equilibrium (theta0 = dtheta0 = 0)")
+
+
+def _static_tilt(stiffness, d_stiffness, blk, ground):
+    """The static rotation q on a slope phi: ``stiffness(q) = M g h sin(q + phi)`` (the moment of
+    gravity about the base centre, which the foundation's restoring moment ``stiffness`` carries),
+    by Newton from q = 0; refused, naming ``slope``, if no stable root lies below alpha."""
+    phi = ground.slope
+    mgh = blk.M * blk.g * blk.h
+    q = 0.0
+    for _ in range(60):
+        f = stiffness(q) - mgh * math.sin(q + phi)
+        df = d_stiffness(q) - mgh * math.cos(q + phi)
+        if df <= 0.0:
+            break
+        step = f / df
+        q -= step
+        if abs(step) <= 1e-15 * max(1.0, abs(q)):
+            if d_stiffness(q) - mgh * math.cos(q + phi) > 0.0 and 0.0 <= q < math.atan2(blk.b, blk.h):
+                return q
+            break
+    raise ValueError(f"slope = {phi:.6g} rad ({math.degrees(phi):.4g} deg): the block has no stable "
+                     "resting tilt on this foundation (gravity's moment along the slope exceeds what the "
+                     "foundation can carry in full contact)")
+
+
 # ------------------------------------------------------------------------ foundations
 def _rotational_from_vibration(body, omega, zeta, mass, p_delta):
     blk = block_inertia(body, mass)
@@ -169,9 +204,22 @@ class TwoSpringFoundation:
         par[P_CT] = 2 * self.c_v * blk.b ** 2
         par[P_THETA_Y] = blk.M * blk.g * blk.b / k_t
 
-    def initial_state(self, blk, theta0, dtheta0):
+    def initial_state(self, blk, theta0, dtheta0, ground=None):
         """(y_c, y_c', q, q') of a release from rest in vertical equilibrium: both corners
-        share the weight if they both touch, else the lower corner carries it alone."""
+        share the weight if they both touch, else the lower corner carries it alone.
+
+        On a slope (``ground``) the block starts at rest in its static equilibrium: both
+        corners compressed, ``y_c = -M g cos(phi) / (2 k_v)`` and the tilt q of
+        ``k_v b^2 sin(2q) = M g h sin(q + phi)`` (downhill, q > 0)."""
+        if _on_slope(ground):
+            _check_slope_release(ground, theta0, dtheta0)
+            kb2 = self.k_v * blk.b ** 2
+            q = _static_tilt(lambda q: kb2 * math.sin(2 * q), lambda q: 2 * kb2 * math.cos(2 * q), blk, ground)
+            d_s = blk.M * blk.g * math.cos(ground.slope) / (2 * self.k_v)
+            if blk.b * math.sin(q) >= d_s:
+                raise ValueError(f"slope = {ground.slope:.6g} rad: at its static tilt {q:.4g} rad the block's "
+                                 "uphill corner leaves its spring: it cannot rest on this foundation")
+            return np.array([-d_s, 0.0, q, 0.0], float)
         d_s = blk.M * blk.g / (2 * self.k_v)
         lift = blk.b * math.sin(abs(theta0))
         yc = -d_s if lift <= d_s else lift - 2 * d_s
@@ -225,7 +273,16 @@ class SwitchingFoundation:
         par[P_EF] = self.e_f
         par[P_THETA_Y] = blk.M * blk.g * blk.b / self.k_t
 
-    def initial_state(self, blk, theta0, dtheta0):
+    def initial_state(self, blk, theta0, dtheta0, ground=None):
+        """(theta, theta'): the release; on a slope (``ground``) the static tilt of
+        ``k_t theta = M g h sin(theta + phi)``, in the contact phase (``|k_t theta| < M g cos(phi) b``)."""
+        if _on_slope(ground):
+            _check_slope_release(ground, theta0, dtheta0)
+            q = _static_tilt(lambda q: self.k_t * q, lambda q: self.k_t, blk, ground)
+            if self.k_t * q >= blk.M * blk.g * math.cos(ground.slope) * blk.b:
+                raise ValueError(f"slope = {ground.slope:.6g} rad: at its static tilt {q:.4g} rad the "
+                                 "foundation's moment reaches M g cos(slope) b: the block rocks at once")
+            return np.array([q, 0.0], float)
         return np.array([theta0, dtheta0], float)
 
 
@@ -264,7 +321,12 @@ class LinearVibration:
         par[P_CT] = self.c_t
         par[P_THETA_Y] = np.inf
 
-    def initial_state(self, blk, theta0, dtheta0):
+    def initial_state(self, blk, theta0, dtheta0, ground=None):
+        """(theta, theta'): the release; on a slope (``ground``) the static rotation
+        ``M h g sin(phi) / k_t``."""
+        if _on_slope(ground):
+            _check_slope_release(ground, theta0, dtheta0)
+            return np.array([blk.M * blk.h * blk.g * math.sin(ground.slope) / self.k_t, 0.0], float)
         return np.array([theta0, dtheta0], float)
 
 

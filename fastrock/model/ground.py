@@ -84,13 +84,12 @@ class Ground:
 
     def check_scene(self, body, *, friction=None, flexible=False, foundation=None):
         """Refuse a scene that this slope cannot hold at rest, or that the
-        models do not run on a slope yet, with an error naming ``slope``."""
+        models do not run on a slope yet, with an error naming ``slope``.  A
+        block on a flexible foundation is checked again by its foundation's
+        ``initial_state`` (a stable static tilt with every spring loaded)."""
         if self.is_level:
             return
         where = f"slope = {self.slope:.6g} rad ({self.slope_deg:.4g} deg)"
-        if foundation is not None:
-            raise ValueError(f"{where}: sloping ground runs without a flexible foundation so far (its springs "
-                             "would start away from their static deflection on the incline)")
         demand = self.static_demand()
         if flexible:
             sliding = friction is not None and friction.sliding_possible

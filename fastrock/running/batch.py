@@ -77,7 +77,7 @@ def _prepare(i, scene, early_exit):
     if scene.foundation is not None:
         from fastrock.model.foundation import block_inertia
         y0 = np.asarray(scene.foundation.initial_state(block_inertia(body, scene.mass), scene.theta0,
-                                                       scene.dtheta0), float)
+                                                       scene.dtheta0, ground), float)
     else:
         y0 = initial_state(spec, body, scene.theta0, scene.dtheta0, scene.wall, ground)
     return spec, y0, hdr, smp, opt, solver

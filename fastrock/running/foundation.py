@@ -15,6 +15,7 @@ from fastrock.running.sweep import call_kernel
 from fastrock.kernels import layout as L
 from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
 from fastrock.model.foundation import D_LEFT, D_RIGHT, block_inertia
+from fastrock.model.ground import as_ground
 
 
 #: Contact names of the history's ``contact`` column, by kernel mode.
@@ -64,7 +65,7 @@ def _check_release(body, theta0, allow_overturn):
 def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical=None,
                         theta0=0.0, dtheta0=0.0, duration=None, t_after=DEFAULT_T_AFTER,
                         t_eval=None, solver=None, rtol=None, atol=None, dt=None,
-                        max_steps=None, allow_overturn=False, history_capacity=None):
+                        max_steps=None, allow_overturn=False, history_capacity=None, ground=None):
     """Simulate a rigid block on a flexible foundation (or its free rocking).
 
     Parameters
@@ -79,10 +80,11 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical
     theta0, dtheta0 : float
         Initial rotation [rad] and angular velocity [rad/s]. The two-spring block starts
         in vertical equilibrium on the corner(s) that touch (see
-        :meth:`TwoSpringFoundation.initial_state`).
+        :meth:`TwoSpringFoundation.initial_state`). On a slope both must be 0: the block
+        starts at rest in its static equilibrium (a tilt downhill).
     allow_overturn : bool
         Allow ``|theta0| >= alpha`` (a release that overturns); otherwise ValueError.
-    duration, t_after, t_eval, solver, rtol, atol, dt, max_steps :
+    duration, t_after, t_eval, solver, rtol, atol, dt, max_steps, ground :
         As in :func:`fastrock.simulate`.
 
     Returns
@@ -111,10 +113,13 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical
     theta0 = V.finite("theta0", theta0)
     dtheta0 = V.finite("dtheta0", dtheta0)
     spec, blk = foundation_spec(body, foundation, mass)
+    ground = as_ground(ground)
+    if ground is not None:
+        ground.check_scene(body, foundation=foundation)
     _check_release(body, theta0, V.boolean("allow_overturn", allow_overturn))
     hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
-                                        history_capacity, solver, False)
-    y0 = foundation.initial_state(blk, theta0, dtheta0)
+                                        history_capacity, solver, False, ground)
+    y0 = foundation.initial_state(blk, theta0, dtheta0, ground)
     code, t, Y, D, lg, met, cnt = integrate_foundation(spec, y0, hdr, smp, opt, te, cap)
     ag, av = ground_at(t, hdr, smp)
     it = spec.state_names.index("theta")

@@ -300,10 +300,11 @@ class Study:
                     if effects[vi].get("ground") is not None:
                         effects[vi]["ground"].check_scene(body, friction=friction, flexible=specs[bi, vi].flexible,
                                                           foundation=foundation)
+                    y0s[bi, vi] = (np.zeros(specs[bi, vi].n_state) if foundation is None else
+                                   foundation.initial_state(_block_inertia(body, mass), 0.0, 0.0,
+                                                            effects[vi].get("ground")))
                 except (TypeError, ValueError) as exc:
                     raise StudyError(f"body {bi} with variant {names[vi]!r}: {exc}") from None
-                y0s[bi, vi] = (np.zeros(specs[bi, vi].n_state) if foundation is None else
-                               foundation.initial_state(_block_inertia(body, mass), 0.0, 0.0))
                 if effects[vi].get("ground") is not None:     # a flexible column at its static deflection
                     effects[vi]["ground"].initial_state(body, specs[bi, vi], y0s[bi, vi])
         prep = _Prepared(records=records, bodies=bodies, body_labels=_body_labels(bodies),
