@@ -1,5 +1,7 @@
 """RigidBody from files and on the command line (issue #17, items 2 and 4): read_outline,
 ``fastrock spectrum/simulate --outline/--mesh``, and ``vertices = "file"`` in a scene."""
+import math
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -116,3 +118,55 @@ def test_scene_vertices_from_a_file(tmp_path):
     with pytest.raises(ValueError, match="line 2"):
         (tmp_path / "bad.csv").write_text("0,0\n1\n0.2,2\n")
         _scene(tmp_path, '[body]\ntype = "rigid-body"\nvertices = "bad.csv"\nmass = 3.0\n')
+
+
+# ------------------------------------------------------------ the rocking spectrum of a shape
+S_GRID, B_GRID = np.linspace(0.1, 0.5, 6), np.array([0.2, 0.6])
+
+
+def test_shape_family_stretches_the_outline():
+    from fastrock.analyses.rocking_spectrum.inputs import shape_family
+    body = shape_family([(0, 0), (1, 0), (0.3, 2.5), (0, 2.5)])(0.6, 0.3)
+    assert 0.5 * (body.b1 + body.b2) == pytest.approx(0.6, rel=1e-14)
+    assert min(math.tan(body.alpha1), math.tan(body.alpha2)) == pytest.approx(0.3, rel=1e-14)
+    assert not body.is_symmetric
+
+
+def test_rocking_spectrum_of_a_rectangular_outline_is_the_rectangles():
+    ref, ref_runs = fr.rocking_spectrum(None, S_GRID, B_GRID, walls=[None], progress=False, return_runs=True)
+    got, runs = fr.rocking_spectrum(None, S_GRID, B_GRID, walls=[None], progress=False, return_runs=True,
+                                    shape=[(0, 0), (1, 0), (1, 3), (0, 3)])
+    assert list(runs["outcome"]) == list(ref_runs["outcome"])
+    np.testing.assert_allclose(runs["p"], ref_runs["p"], rtol=1e-14)
+    np.testing.assert_allclose(runs["max_rotation_ratio"], ref_runs["max_rotation_ratio"], rtol=1e-9)
+    for col in ("slenderness_min", "beta", "beta_bound"):
+        assert list(got[col]) == list(ref[col])
+
+
+def test_rocking_spectrum_of_an_asymmetric_outline(tmp_path):
+    from fastrock.analyses.rocking_spectrum.inputs import shape_family
+    wedge = [(0, 0), (1, 0), (0.3, 2.5), (0, 2.5)]
+    table, runs = fr.rocking_spectrum(None, S_GRID, B_GRID, walls=[None], progress=False, return_runs=True,
+                                      shape=wedge)
+    family = shape_family(wedge)
+    record = fr.io.default_records.load_default_record()
+    for i in (2, 9):                       # two cells, against the single run of the same body
+        row = runs.iloc[i]
+        body = family(row["b"], row["slenderness"])
+        one = fr.simulate(body, record)
+        assert row["outcome"] == one.outcome and row["alpha"] == body.alpha and row["p"] == body.p
+    # the threshold's p is the body's at (b/h)_min
+    first = table.iloc[0]
+    assert first["p"] == family(first["b"], first["slenderness_min"]).p
+    (tmp_path / "wedge.csv").write_text("\n".join(f"{x} {y}" for x, y in wedge))
+    csv = tmp_path / "rs.csv"
+    assert cli.main(["rocking-spectrum", "--outline", str(tmp_path / "wedge.csv"), "--n-slenderness", "6",
+                     "--n-sizes", "2", "--b-min", "0.2", "--b-max", "0.6", "--walls", "two-sided",
+                     "--csv", str(csv), "--png", str(tmp_path / "rs.png"), "-q"]) == 0
+    np.testing.assert_array_equal(pd.read_csv(csv)["beta"], table["beta"])
+
+
+def test_rocking_spectrum_shape_refuses_a_body():
+    with pytest.raises(ValueError, match="shape must be an outline"):
+        fr.rocking_spectrum(None, S_GRID, B_GRID, walls=[None], progress=False,
+                            shape=fr.RigidBody.from_polygon(WEDGE, mass=1.0))

@@ -136,7 +136,7 @@ def _cli_rocking_spectrum(args):
     walls = parse_walls(args.walls) if args.walls else None
     t0 = time.perf_counter()
     table, runs = rocking_spectrum(records, s, b, walls, rtol=args.rtol, dt=args.dt, t_after=args.t_after,
-                                   progress=not args.quiet, return_runs=True)
+                                   progress=not args.quiet, return_runs=True, shape=args.outline)
     el = time.perf_counter() - t0
     print(f"{len(runs)} runs ({len(records)} records x {len(table.attrs['walls'])} wall settings x "
           f"{args.n_sizes} sizes x {args.n_slenderness} slenderness) in {el:.2f} s "
@@ -155,7 +155,8 @@ def _cli_rocking_spectrum(args):
     from fastrock.cli.output import wrote, write_table
     tables = write_table(table, args)
     fig = plot_rocking_spectrum(table, title=f"{len(records)} record(s), "
-                                             f"{args.n_sizes}x{args.n_slenderness} blocks")
+                                             f"{args.n_sizes}x{args.n_slenderness} "
+                                             f"{'stretched outlines' if args.outline else 'blocks'}")
     fig.savefig(args.png, dpi=130)
     if table.attrs.get("interrupted"):
         from fastrock.cli.output import interrupted_exit
@@ -224,6 +225,10 @@ def add_subcommands(subparsers):
     s.add_argument("--n-sizes", type=int, default=20, help="number of half-widths b (default 20)")
     s.add_argument("--b-min", type=float, default=0.1, help="smallest half-width [m] (default 0.1)")
     s.add_argument("--b-max", type=float, default=1.0, help="largest half-width [m] (default 1)")
+    s.add_argument("--outline", metavar="FILE",
+                   help="a body outline (x y [m] per row) instead of rectangles: each cell stretches it to "
+                        "half base width b and slenderness tan(alpha) of its slenderer side (default: "
+                        "rectangles)")
     s.add_argument("--walls", help="comma list of settings, e.g. two-sided,0.01,0.10 (gaps in m; "
                                    "default: these three if the wall model is installed)")
     s.add_argument("--rtol", type=float, help="relative tolerance of adaptive RK45 [-] (default 1e-8)")

@@ -125,9 +125,14 @@ def summarize_runs(runs):
             thr = minimum_stable_on_grid(grp["stable"].to_numpy())
             s_min = float(s[thr.index])
             bound = thr.bound
-        body = None if math.isnan(s_min) else RigidBlock.rectangle(b, b / s_min)
-        p = math.nan if body is None else body.p
-        Tp = 2 * math.pi / p if body is not None else math.nan
+        # the run's own block at (b/h)_min (a shape's body); a table without p holds rectangles
+        if math.isnan(s_min):
+            p = math.nan
+        elif "p" in grp:
+            p = float(grp["p"].to_numpy()[thr.index])
+        else:
+            p = RigidBlock.rectangle(b, b / s_min).p
+        Tp = 2 * math.pi / p
         row.update({
             "slenderness_min": s_min, "h_min": b / s_min, "alpha_min": math.atan(s_min),
             "p": p, "Tp": Tp, "tp_over_tm": Tp / Tm, "beta": s_min / pga_g,
@@ -151,7 +156,7 @@ def rocking_spectrum(records, slenderness=None, half_widths=None, walls=None, *,
                      unit=None, solver=None, rtol=None, atol=None, dt=None,
                      record_breakpoints=None, t_after=T_AFTER, early_exit=True,
                      stable_outcomes=STABLE_OUTCOMES, progress=True, chunk_size=None,
-                     return_runs=False, ground=None):
+                     return_runs=False, ground=None, shape=None):
     """Rocking spectrum (beta against Tp/Tm) of records, in parallel.
 
     Every record x wall setting x half-width x slenderness block runs in
@@ -197,6 +202,13 @@ def rocking_spectrum(records, slenderness=None, half_widths=None, walls=None, *,
         the ground says (horizontally by default), the early decisions are
         off, and every block of the grid must stand on the slope
         (tan(alpha) > tan(slope); an error naming ``slope`` otherwise).
+    shape : array (n, 2) or path, optional
+        A body outline [m] (vertices, or an outline file) instead of
+        rectangles: each grid cell runs the outline stretched so that its
+        mean half base width is ``b`` and tan(alpha) of its slenderer side is
+        the grid's slenderness (:func:`~fastrock.analyses.rocking_spectrum.inputs.shape_family`;
+        asymmetric outlines run the asymmetric rigid-body model, and as
+        walls accept them).
 
     Returns
     -------
@@ -206,7 +218,7 @@ def rocking_spectrum(records, slenderness=None, half_widths=None, walls=None, *,
                                  solver=solver, rtol=rtol, atol=atol, dt=dt,
                                  record_breakpoints=record_breakpoints, t_after=t_after,
                                  early_exit=early_exit, stable_outcomes=stable_outcomes,
-                                 progress=progress, chunk_size=chunk_size, ground=ground)
+                                 progress=progress, chunk_size=chunk_size, ground=ground, shape=shape)
     table = summarize_runs(runs)
     return (table, runs) if return_runs else table
 

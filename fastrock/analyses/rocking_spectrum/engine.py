@@ -13,7 +13,8 @@ from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
 from fastrock.running.sweep import run_sweep
 from fastrock.kernels import layout as L
 from fastrock.analyses.rocking_spectrum.inputs import (as_walls, check_record_options,
-    check_run_length, grid_values, check_stable_outcomes, gap_of_wall, label_of_wall, load_records)
+    check_run_length, grid_values, check_stable_outcomes, gap_of_wall, label_of_wall, load_records,
+    shape_family)
 
 
 #: Mennitti et al.'s grid: 20 slenderness values b/h in [0.1, 0.5] ...
@@ -31,7 +32,9 @@ T_AFTER = DEFAULT_T_AFTER
 
 RUN_COLUMNS = """\
 record, wall, wall_gap [m], pga_g [-], mean_period [s], b [m], slenderness b/h [-],
-h [m], alpha [rad], p [rad/s], e [-], outcome, status, stable (bool),
+h [m], alpha [rad], p [rad/s], e [-] (with a shape: b is the mean half base width,
+slenderness tan(alpha) of the slenderer side, h = b / slenderness, alpha, p of that
+side, e the restitution e12), outcome, status, stable (bool),
 max_rotation_ratio max|theta|/alpha [-], impacts, wall_impacts, time_uplift [s],
 time_overturn [s], time_end [s], nfev, steps, rejected_steps
 """
@@ -84,10 +87,12 @@ def _sweep_arrays(records, rec_idx, specs, solver, t_after, early_exit, progress
 
 
 def rows_sweep(records, rec_idx, b, s, wall_idx, walls, *, e, solver, t_after, early_exit,
-                progress, chunk_size, ground=None):
+                progress, chunk_size, ground=None, shape=None):
     """Run rows (record index, half-width, slenderness, wall index), grouped
     so that each kernel runs once; returns the per-run DataFrame.  On a
-    sloping ``ground`` the closed-form early decisions are off."""
+    sloping ``ground`` the closed-form early decisions are off.  ``shape``:
+    a body factory ``shape(b, s)`` (:func:`shape_family`) instead of the
+    rectangles."""
     if ground is not None:
         early_exit = False
     n = rec_idx.size
@@ -101,14 +106,16 @@ def rows_sweep(records, rec_idx, b, s, wall_idx, walls, *, e, solver, t_after, e
         key = (b[i], s[i])
         body = bodies.get(key)
         if body is None:
-            body = bodies[key] = RigidBlock.rectangle(b[i], h[i], e=e)
+            body = bodies[key] = (RigidBlock.rectangle(b[i], h[i], e=e) if shape is None else shape(b[i], s[i]))
             if ground is not None:
                 ground.check_scene(body)
                 for k in set(rec_idx.tolist()):
                     ground.check_lift_off(body, records[k].pga)
         specs.append(registry.select(body, walls[wall_idx[i]]))
         pvals[i] = body.p
-        evals[i] = body.e
+        evals[i] = body.e if shape is None else body.e12
+        if shape is not None:
+            alpha[i] = body.alpha
     args = (records, rec_idx, specs, solver, t_after)
     status, MET, YF, interrupted = _sweep_arrays(*args, early_exit, progress, chunk_size, ground)
     if early_exit:
@@ -156,7 +163,8 @@ def spectrum_solver(solver, rtol, atol, dt, record_breakpoints=None):
 def rocking_spectrum_runs(records, slenderness=None, half_widths=None, walls=None, *, e=None,
                           unit=None, solver=None, rtol=None, atol=None, dt=None,
                           record_breakpoints=None, t_after=T_AFTER, early_exit=True,
-                          stable_outcomes=STABLE_OUTCOMES, progress=True, chunk_size=None, ground=None):
+                          stable_outcomes=STABLE_OUTCOMES, progress=True, chunk_size=None, ground=None,
+                          shape=None):
     """Every run of the rocking-spectrum study, one row per record x wall x
     size x slenderness (columns in ``RUN_COLUMNS``).  Arguments as in
     :func:`rocking_spectrum`."""
@@ -176,16 +184,17 @@ def rocking_spectrum_runs(records, slenderness=None, half_widths=None, walls=Non
     check_run_length(records, solver, t_after)
     from fastrock.model.ground import as_ground
     ground = as_ground(ground)
+    family = None if shape is None else shape_family(shape, e)
     R, W, B, S = np.meshgrid(np.arange(len(records)), np.arange(len(walls)), b_grid, s_grid,
                              indexing="ij")
     df = rows_sweep(records, R.ravel(), B.ravel(), S.ravel(), W.ravel(), walls, e=e,
                      solver=solver, t_after=t_after, early_exit=early_exit, progress=progress,
-                     chunk_size=chunk_size, ground=ground)
+                     chunk_size=chunk_size, ground=ground, shape=family)
     df.insert(df.columns.get_loc("outcome") + 2, "stable", df["outcome"].isin(stable_outcomes))
     df.attrs.update(solver=solver.name, t_after=t_after, early_exit=early_exit,
                     stable_outcomes=tuple(stable_outcomes),
                     walls=[label_of_wall(w) for w in walls],
-                    slope=ground.slope if ground is not None else 0.0)
+                    slope=ground.slope if ground is not None else 0.0, shape=shape is not None)
     return df
 
 

@@ -20,6 +20,36 @@ DEFAULT_WALL_GAPS = (0.01, 0.10)
 
 
 # ------------------------------------------------------------------ inputs
+def shape_family(shape, e=None):
+    """The bodies of a rocking spectrum over one shape: ``body(b, s)`` is the outline ``shape``
+    stretched so that its mean half base width (b1 + b2)/2 is ``b`` [m] and tan(alpha) of its
+    slenderer side is ``s`` (a plate of uniform density: the mass properties follow the stretched
+    polygon exactly). For a rectangle this is ``RigidBlock.rectangle(b, b / s)``.
+
+    ``shape``: vertices (n x 2) [m] or an outline file (:func:`fastrock.read_outline`); the body
+    rests on the facet of its convex hull that faces down."""
+    from fastrock.model.rigid_body import RigidBody
+    if isinstance(shape, (str, os.PathLike)):
+        from fastrock.io.outline import read_outline
+        shape = read_outline(shape)
+    if isinstance(shape, RigidBody):
+        raise ValueError("shape must be an outline (vertices [m] or an outline file), not a RigidBody: the "
+                         "spectrum stretches the outline, and a body's own inertia (a mesh's) cannot be stretched")
+    vertices = np.asarray(shape, float) if not isinstance(shape, np.ndarray) else shape
+    template = RigidBody.from_polygon(vertices, mass=1.0)
+    pose_outline = template.outline                          # relative to the centre of mass, resting
+    k = template.smaller_side
+    b_k, h_k = (template.b1, template.h1) if k == 1 else (template.b2, template.h2)
+    half_base = 0.5 * (template.b1 + template.b2)
+
+    def body(b, s):
+        sx = b / half_base
+        sy = sx * (b_k / h_k) / s
+        return RigidBody.from_polygon(pose_outline * np.array([sx, sy]), mass=1.0, e=e)
+
+    return body
+
+
 def default_walls():
     """``(None, Wall(0.01), Wall(0.10))`` if the wall model is installed,
     else ``(None,)`` (two-sided rocking only)."""
