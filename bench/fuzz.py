@@ -23,8 +23,15 @@ Invariants and their tolerance rules
 within ``REL_EXACT`` = 1e-6 relative.  A pair that differs is re-run once with the tight
 adaptive solver (rtol = ``TIGHT_RTOL``, ``early_exit=False``); if the tight pair is the same,
 the original difference is an integration-error effect at an outcome boundary and is counted
-under ``boundary:<invariant>`` (reported, not a failure); if it still differs, or a run of the
-pair failed, the cell gets ``violated:<invariant>``.
+under ``boundary:<invariant>`` (reported, not a failure).  A pair whose outcomes agree at the
+tight rtol but whose max rotations still differ is run once more at ``TIGHTER_RTOL`` = 1e-13: if the
+outcomes still agree and the difference shrinks at least tenfold (``CONVERGING``) for a hundredfold
+tighter tolerance, it is integration error of an ill-conditioned run, not a broken invariant (seed
+2027: slender blocks, b/h ~ 0.02, under one-cosine pulses 0.3 % above uplift chatter through ~1 700
+impacts at 1e-3 alpha, where the local error control does not bound the global error of the
+maximum; the scaled pair differs by 4.6 % at rtol 1e-11 and by 7e-5 at 1e-13), counted under
+``boundary:<invariant> (converging)``.  If the pair still differs, or a run of the pair failed, the
+cell gets ``violated:<invariant>``.
 
 * ``mirror``: a two-sided body (every family but the wall ones) under sign -1 gives the same
   result as under sign +1 (the one-sine, half-sine and one-cosine pulses of sign -1 are exact
@@ -113,6 +120,8 @@ WALL_FAMILIES = ("wall", "flexible_wall", "contact")
 PULSES = ("one-sine", "half-sine", "one-cosine")
 REL_EXACT = 1e-6
 TIGHT_RTOL = 1e-11
+TIGHTER_RTOL = 1e-13       # the convergence test of a pair that still differs at TIGHT_RTOL
+CONVERGING = 0.1           # ... its difference must shrink at least this much
 ENERGY_TOL = 1e-6          # relative to the energy scale, plus ENERGY_TOL_RTOL * rtol
 ENERGY_TOL_RTOL = 100.0
 T_AFTER = 10.0
@@ -473,7 +482,8 @@ def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None
                 explain=None):
     """Run two variants on ``cells`` and compare them row by row (with the tight re-run rule).
 
-    run_a / run_b: functions (tight: bool) -> dict key -> row (key of the main grid cell).
+    run_a / run_b: functions (tight: False, True or an rtol) -> dict key -> row (key of the main
+    grid cell).
     ``explain(key)``: for a pair that still differs at the tight rtol, (tag, detail) when an
     independent physical check shows the two variants are not comparable on that cell (counted
     under ``reported`` as ``<name>_<tag>``, not a failure), else None."""
@@ -519,6 +529,7 @@ def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None
         for k in diff:
             res.tag(k, f"violated:{name}", f"tight re-run raised {e!r}")
         return
+    converging = _converging(name, diff, At, Bt, run_a, run_b, outcome_only, status)
     for k in diff:
         a, b = A[k], B[k]
         what = (f"{a['status'] if status else a['outcome']} {float(a['max_rotation_ratio']):.9g} vs "
@@ -526,6 +537,10 @@ def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None
         if k in At and k in Bt and _same(At[k], Bt[k], outcome_only, status) \
                 and not At[k]["status"].startswith("failed"):
             res.boundary[name] += 1
+            continue
+        if k in converging:
+            res.boundary[f"{name} (converging)"] += 1
+            res.details[k].append(f"{name} converging ({what}): {converging[k]}")
             continue
         why = explain(k) if explain is not None else None
         if why:
@@ -540,6 +555,32 @@ def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None
             tw = (f"; tight: {At[k]['outcome']} {float(At[k]['max_rotation_ratio']):.9g} vs {Bt[k]['outcome']} "
                   f"{float(Bt[k]['max_rotation_ratio']):.9g}" if k in At and k in Bt else "")
             res.tag(k, f"violated:{name}", what + tw)
+
+
+def _converging(name, diff, At, Bt, run_a, run_b, outcome_only, status):
+    """Cells of ``diff`` whose pair agrees in outcome at the tight rtol and whose max-rotation
+    difference shrinks at least CONVERGING-fold at TIGHTER_RTOL with the outcomes still equal:
+    {key: detail} (module docstring)."""
+    def rot(row):
+        return float(row["max_rotation_ratio"])
+    cand = [k for k in diff if k in At and k in Bt and not outcome_only
+            and _same(At[k], Bt[k], True, status) and not At[k]["status"].startswith("failed")]
+    if not cand:
+        return {}
+    try:
+        A2, _, _ = run_a(TIGHTER_RTOL)
+        B2, _, _ = run_b(TIGHTER_RTOL)
+    except Exception:  # noqa: BLE001
+        return {}
+    out = {}
+    for k in cand:
+        if k not in A2 or k not in B2 or not _same(A2[k], B2[k], True, status):
+            continue
+        d1, d2 = abs(rot(At[k]) - rot(Bt[k])), abs(rot(A2[k]) - rot(B2[k]))
+        if d2 <= CONVERGING * d1:
+            out[k] = (f"difference {d1:.3g} at rtol {TIGHT_RTOL:g}, {d2:.3g} at {TIGHTER_RTOL:g} "
+                      f"({rot(A2[k]):.9g} vs {rot(B2[k]):.9g})")
+    return out
 
 
 MU_INF = 1e6              # the "mu -> inf" friction of the mu_inf check
@@ -853,7 +894,8 @@ def _checks(res, P, main, limit):
     def spec_rows(variant=None, scale=1.0, early_exit=True, flip=False):
         def run(tight):
             if tight:
-                df, el, hang = _spectrum_variant_tight(P, sa, sf, variant, scale, limit)
+                rtol = TIGHT_RTOL if tight is True else tight
+                df, el, hang = _spectrum_variant_tight(P, sa, sf, variant, scale, limit, rtol)
             else:
                 df, el, hang = spectrum(P, sa, sf, "both", early_exit=early_exit, scale=scale, variant=variant,
                                         limit=limit)
@@ -904,7 +946,7 @@ def _checks(res, P, main, limit):
             res.details[cells[0]].append(f"stiff check hang: {e}")
 
 
-def _spectrum_variant_tight(P, amps, freqs, variant, scale, limit):
+def _spectrum_variant_tight(P, amps, freqs, variant, scale, limit, rtol=TIGHT_RTOL):
     """A variant with the tight adaptive solver (and early_exit=False)."""
     from fastrock.analyses.spectrum import overturning_spectrum
     fr = _fr()
@@ -912,7 +954,7 @@ def _spectrum_variant_tight(P, amps, freqs, variant, scale, limit):
     body = kw.pop("body")
     kind = kw.pop("pulse")
     tscale = math.sqrt(scale)
-    kw["solver"] = fr.Solver(rtol=TIGHT_RTOL, eps_t=1e-9 * tscale, eps_omega=1e-9 / tscale)
+    kw["solver"] = fr.Solver(rtol=rtol, eps_t=1e-9 * tscale, eps_omega=1e-9 / tscale)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         with _Alarm(limit) as al:
