@@ -8,7 +8,7 @@ from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.model.ground import as_ground
 from fastrock.running import registry
-from fastrock.running.outcomes import outcome_of, status_of, warn_unstable
+from fastrock.running.outcomes import STATUS, outcome_of, status_of, warn_unstable
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
 from fastrock.running.sweep import run_chunks
 from fastrock.kernels import layout as L
@@ -20,8 +20,8 @@ sign                pulse sign (+1: ground first accelerates toward +x)
 amplitude           a_p                                      [m/s^2]
 amplitude_g         a_p / g                                  [-]
 frequency_hz        f_p = omega_p / (2 pi)                   [Hz]
-outcome             safe | mode1 | mode2 | leaning | flight | failed
-status              refined status (e.g. safe:rest, safe:bounded)
+outcome             safe | slide | mode1 | mode2 | leaning | flight | failed (categorical)
+status              refined status (e.g. safe:rest, safe:bounded) (categorical)
 max_rotation_ratio  max |theta| / alpha                      [-]
 side                the side the body overturned to: +1 (theta > 0, onto the right pivot), -1, 0 if
                     it did not overturn
@@ -52,6 +52,39 @@ boundary            outcome changes when the tolerance is halved (boundary_check
 
 #: Largest grid of one call (runs): its arrays take about 1 kB per run.
 MAX_GRID_RUNS = 10_000_000
+
+#: Compact columns (a 1000 x 1000 grid is a million rows): outcome and status are categoricals of
+#: these labels (one byte per row; every table holds all of them, so that the outcomes of two
+#: tables compare cell by cell; ``value_counts()`` lists the unused ones with 0), the pulse sign
+#: and the overturning side int8, the impact counts int32. Every value is exact.
+CATEGORIES = {"outcome": ("safe", "slide", "mode1", "mode2", "leaning", "flight", "failed"),
+              "status": tuple(dict.fromkeys(STATUS.values()))}
+COMPACT_INTEGERS = {"sign": np.int8, "side": np.int8, "impacts": np.int32, "ground_impacts": np.int32,
+                    "wall_impacts": np.int32}
+
+
+def _codes(name, values):
+    """Category codes (int8) of a text column, refusing a label outside CATEGORIES."""
+    cat = pd.Categorical(values, categories=CATEGORIES[name])
+    if (cat.codes < 0).any():
+        bad = sorted(set(np.asarray(values, object)[cat.codes < 0].tolist()))
+        raise AssertionError(f"{name}: labels {bad} are not in CATEGORIES")
+    return cat.codes.astype(np.int8)
+
+
+def compact_table(df, codes=None):
+    """The spectrum table with its compact columns (CATEGORIES, COMPACT_INTEGERS); ``codes``:
+    category codes already computed, by column name."""
+    codes = codes or {}
+    for name, cats in CATEGORIES.items():
+        if name in codes:
+            df[name] = pd.Categorical.from_codes(codes[name], categories=cats)
+        elif name in df and not isinstance(df[name].dtype, pd.CategoricalDtype):
+            df[name] = pd.Categorical.from_codes(_codes(name, df[name].to_numpy(object)), categories=cats)
+    for name, dtype in COMPACT_INTEGERS.items():
+        if name in df:
+            df[name] = df[name].to_numpy().astype(dtype)
+    return df
 
 
 def _grid(values, name):
@@ -262,10 +295,11 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         part = table(slice(start, start + st.size), st, met, yf)
         if not columns:
             for k in part.columns:
-                dtype = part[k].to_numpy().dtype
-                columns[k] = np.empty(n, dtype=dtype if dtype.kind in "biuf" else object)
+                dtype = (np.int8 if k in CATEGORIES else COMPACT_INTEGERS.get(k, part[k].to_numpy().dtype))
+                columns[k] = np.empty(n, dtype=dtype if np.dtype(dtype).kind in "biuf" else object)
         for k in part.columns:
-            columns[k][start:start + st.size] = part[k].to_numpy()
+            columns[k][start:start + st.size] = (_codes(k, part[k].to_numpy(object)) if k in CATEGORIES
+                                                 else part[k].to_numpy())
         if solver.dt and (st == L.FAIL_UNSTABLE).any():
             bad = np.flatnonzero(st == L.FAIL_UNSTABLE)
             unstable.append((start + bad, met[bad]))
@@ -287,9 +321,13 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
                       model=spec.name)
     if not columns:                   # interrupted before the first chunk finished
         empty = np.empty(0)
-        df = table(slice(0, 0), empty.astype(np.int64), np.empty((0, L.N_MET)), np.empty((0, spec.n_state)))
+        df = compact_table(table(slice(0, 0), empty.astype(np.int64), np.empty((0, L.N_MET)),
+                                 np.empty((0, spec.n_state))))
     else:
-        df = pd.DataFrame({k: v[:done] for k, v in columns.items()}, copy=False)
+        codes = {k: columns[k][:done] for k in CATEGORIES}
+        df = compact_table(pd.DataFrame({k: v[:done] for k, v in columns.items() if k not in CATEGORIES},
+                                        copy=False), codes)
+        df = df[list(columns)]        # the columns in table order
     columns.clear()
     if unstable:
         # the unstable rows' suggested steps, placed as warn_unstable reads them
@@ -436,7 +474,7 @@ def load_spectrum(out):
     parts = sorted(folder.glob("part-*.parquet"))
     if parts:
         df = pd.concat([pd.read_parquet(p) for p in parts], ignore_index=True)
-        df = df.sort_values("row", kind="stable").drop(columns="row").reset_index(drop=True)
+        df = compact_table(df.sort_values("row", kind="stable").drop(columns="row").reset_index(drop=True))
     else:
         df = pd.DataFrame()
     df.attrs.update(info.get("attrs", {}), interrupted=len(df) < info["runs"])

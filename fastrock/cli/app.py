@@ -205,7 +205,7 @@ def cmd_spectrum(args):
             ax.set_xlim(freqs[0], freqs[-1])
             ax.set_ylim(amps[0], amps[-1])
     fig.savefig(args.png, dpi=130)
-    counts = df["outcome"].value_counts().to_dict()
+    counts = {k: v for k, v in df["outcome"].value_counts().to_dict().items() if v}
     print(f"{len(df)} runs in {el:.2f} s ({len(df) / el:,.0f} runs/s), outcomes {counts}")
     if df.attrs.get("interrupted"):
         return interrupted_exit(len(df), n_total, "runs", tables + [args.png])
