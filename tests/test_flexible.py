@@ -568,10 +568,32 @@ def test_full_contact_map_never_gains_energy(wr, zeta, k, xu, xv, xt, xw):
 
 
 @pytest.mark.nojit
-def test_pivot_switch_map_formula_and_energy_gain_is_counted():
+def test_pivot_switch_map_formula():
     """I1 (physics.md 3.5): u' continuous, theta'+ = [H^2 + u^2 - B^2 + I_m/m] /
-    [H^2 + (u + sB)^2 + I_m/m] theta'-, and a state with u' theta' large and of opposite sign
-    gains kinetic energy: the kernel counts it."""
+    [H^2 + (u + sB)^2 + I_m/m] theta'-, where it does not add kinetic energy."""
+    b = body(3.0, I1, rotary_inertia_ratio=0.1)
+    im = 0.1 * b.R0 ** 2
+    # rocking on s = +1 toward the impact (theta' < 0), the column moving with the block
+    y0 = [0.0, -0.5 * b.omega_n * b.uplift_deformation, 2e-4, -0.1]
+    code, met, t, Y, D, log = run_kernel(b, y0, 0.2)
+    imp = np.flatnonzero(log[:, L.LOG_KIND] == L.EV_IMPACT)
+    assert imp.size >= 1
+    i = np.flatnonzero(t == log[imp[0], L.LOG_T])[0]
+    u, du, th, dth = Y[i]
+    s = D[i, 1]
+    assert th == pytest.approx(0.0, abs=1e-12) and s == 1 and dth < 0
+    post = (b.H ** 2 + u * u - b.B ** 2 + im) / (b.H ** 2 + (u + s * b.B) ** 2 + im) * dth
+    assert Y[i + 1, 3] == pytest.approx(post, rel=1e-12)
+    assert Y[i + 1, 1] == du and D[i + 1, 1] == -s
+    E = total_energy(b, Y, D)
+    assert E[i + 1] <= E[i]
+
+
+@pytest.mark.nojit
+def test_pivot_switch_never_adds_energy():
+    """Where the I1 map would add kinetic energy (u' theta' large and of opposite sign), the
+    impact takes the full-contact map instead (theta'+ = 0, u'+ = u'- + H theta'-, which never
+    adds energy; issue #14: no impact map creates energy) and is counted in energy_gains."""
     b = body(3.0, I1, rotary_inertia_ratio=0.1)
     im = 0.1 * b.R0 ** 2
     # rocking on s = +1 toward the impact (theta' < 0), column whipping the other way
@@ -579,22 +601,29 @@ def test_pivot_switch_map_formula_and_energy_gain_is_counted():
     code, met, t, Y, D, log = run_kernel(b, y0, 0.2)
     imp = np.flatnonzero(log[:, L.LOG_KIND] == L.EV_IMPACT)
     assert imp.size >= 1
-    t1 = log[imp[0], L.LOG_T]
-    i = np.flatnonzero((t == t1))[0]
+    i = np.flatnonzero(t == log[imp[0], L.LOG_T])[0]
     u, du, th, dth = Y[i]
     s = D[i, 1]
     assert th == pytest.approx(0.0, abs=1e-12) and s == 1 and dth < 0 < du
+    # the bare I1 map would have raised the kinetic energy here
     post = (b.H ** 2 + u * u - b.B ** 2 + im) / (b.H ** 2 + (u + s * b.B) ** 2 + im) * dth
-    assert Y[i + 1, 3] == pytest.approx(post, rel=1e-12)
-    assert Y[i + 1, 1] == du and D[i + 1, 1] == -s
+    r = u + s * b.B
+    t_i1 = 0.5 * (du * du + 2 * b.H * du * post + (r * r + b.H ** 2 + im) * post * post)
+    r0 = u - s * b.B
+    t_before = 0.5 * (du * du + 2 * b.H * du * dth + (r0 * r0 + b.H ** 2 + im) * dth * dth)
+    assert t_i1 > t_before * (1 + 1e-9)
+    # ... so the full-contact map was used
+    assert Y[i + 1, 3] == 0.0
+    assert Y[i + 1, 1] == pytest.approx(du + b.H * dth, rel=1e-14)
     E = total_energy(b, Y, D)
-    assert E[i + 1] > E[i]
+    assert E[i + 1] <= E[i] + 1e-12 * abs(E[i])
     assert met[L.M_ENERGY_GAINS] >= 1
 
 
-def test_pivot_switch_energy_gain_warns_in_simulate():
-    """simulate counts I1 energy gains in the metrics and warns; the I3 default never does."""
-    with pytest.warns(UserWarning, match="created energy"):
+def test_pivot_switch_cap_warns_in_simulate():
+    """simulate counts the capped I1 impacts and warns; the I3 default never does. The free
+    motion never gains energy with either map."""
+    with pytest.warns(UserWarning, match="would have added energy"):
         r = fr.simulate(body(30, I1), None, theta0=THETA0, duration=4.0)
     assert r.metrics["energy_gains"] >= 1
     with warnings.catch_warnings():

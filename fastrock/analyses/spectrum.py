@@ -44,7 +44,8 @@ flights, time_flight, max_jump  free flights, time in flight [s] and the largest
                     friction, or Friction(lift_off="flight"))
 max_deformation     max |u|, the column's deflection (flexible body)  [m]
 max_deformation_ratio  max |u| / the deflection at uplift (flexible body)  [-]
-energy_gains        impacts that raised the kinetic energy (flexible body; pivot-switch map)
+energy_gains        pivot-switch impacts that would have raised the kinetic energy and took the
+                    full-contact map instead (flexible body)
 lift_offs, time_unloaded  held lift-offs and their time (flexible body with friction)  [-, s]
 boundary            outcome changes when the tolerance is halved (boundary_check=True)
 """

@@ -170,8 +170,9 @@ class FlexibleBody:
     impact : str
         "full-contact" (I3, default: theta'+ = 0, u'+ = u'- + H theta'-, then
         the uplift test at once) or "pivot-switch" (I1, u' continuous, angular
-        momentum about the new corner conserved; can create energy, counted in
-        the ``energy_gains`` metric).
+        momentum about the new corner conserved; where that would create
+        energy the impact takes the full-contact map instead, counted in the
+        ``energy_gains`` metric).
     rotary_inertia_ratio : float
         I_m / (m R0^2) (default 0: point mass).
     mass : float

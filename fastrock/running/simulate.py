@@ -180,9 +180,9 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         metrics["energy_gains"] = int(met[L.M_ENERGY_GAINS])
     if metrics.get("energy_gains", 0) > 0:
         if getattr(body, "impact", None) == "pivot-switch":
-            warnings.warn(f"the pivot-switch (I1) impact map created energy at {metrics['energy_gains']} "
-                          "impact(s) in this run (see the docs' user guide, 'Flexible bodies', 'Impact maps')",
-                          stacklevel=2)
+            warnings.warn(f"the pivot-switch (I1) impact map would have added energy at {metrics['energy_gains']} "
+                          "impact(s) in this run; those took the full-contact map, which never does (see the "
+                          "docs' user guide, 'Flexible bodies', 'Impact maps')", stacklevel=2)
         else:
             warnings.warn(f"{metrics['energy_gains']} impact(s) raised the kinetic energy (FASTROCK_DEBUG "
                           "check): a defect, please report it with this run", RuntimeWarning, stacklevel=2)
