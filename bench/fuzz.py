@@ -72,8 +72,9 @@ cell gets ``violated:<invariant>``.
   Flexible (all three): kinetic energy of the mass, base and rotary inertias with the base slip,
   + K u^2/2 + gravity (physics.md 3.4, 4.4; flexible_wall: no slip, the base mass of full
   contact).  Contact: the history's d, z are the base midpoint P, the CM is P + h (sin theta,
-  cos theta): E = (v_Gx^2 + v_Gy^2)/2 + I_G theta'^2/(2M) + g (y_G - h).  Not checked: the pivot-switch (I1) impact map
-  (it creates energy by design, README) and the foundation family (spring energy of the
+  cos theta): E = (v_Gx^2 + v_Gy^2)/2 + I_G theta'^2/(2M) + g (y_G - h).  The pivot-switch (I1)
+  impact map is checked too since 52be7fd (where it would create energy the impact takes the
+  full-contact map).  Not checked: the foundation family (spring energy of the
   two-spring model not in the history; the switching model gains energy at uplift by design).
 * ``stiff``: (flexible family, reported only) omega_n/p = 1000 against ``rigid_equivalent()``:
   outcome mismatches are counted under ``stiff_mismatch``, never a failure.
@@ -756,8 +757,6 @@ def energy(history, body, scene, family):
         vy = dz - hm * np.sin(th) * w
         return 0.5 * (vx * vx + vy * vy) + 0.5 * IG * w * w + g * (z + hm * np.cos(th) - hm)
     if family in ("flexible", "flexible_friction", "flexible_wall"):
-        if body.impact != "full-contact":
-            return None
         u = history["u"].to_numpy()
         du = history["u_dot"].to_numpy()
         Bw, H = body.B, body.H
