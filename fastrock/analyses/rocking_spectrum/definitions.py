@@ -206,7 +206,7 @@ def rocking_spectrum(records, slenderness=None, half_widths=None, walls=None, *,
         A body outline [m] (vertices, or an outline file) instead of
         rectangles: each grid cell runs the outline stretched so that its
         mean half base width is ``b`` and tan(alpha) of its slenderer side is
-        the grid's slenderness (:func:`~fastrock.analyses.rocking_spectrum.inputs.shape_family`;
+        the grid's slenderness (``fastrock.analyses.rocking_spectrum.inputs.shape_family``;
         asymmetric outlines run the asymmetric rigid-body model, and as
         walls accept them).
 
