@@ -1426,11 +1426,16 @@ def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     rx, ry = point_offset(j, 0.0, par)
     hm = hmid(par)
     # v_G = v_c - theta' (ry, -rx)
-    set_cm_velocity(y, par, dpost - post * ry, post * rx, post)
+    vgx = dpost - post * ry
+    set_cm_velocity(y, par, vgx, post * rx, post)
     y[4] = -(ry + hm)
     if abs(post) < opt[O_EPS_OMEGA] or chatter:
+        # the rest rule stops the rotation and keeps the new corner's slip
+        # velocity, unless that exceeds the CM's horizontal speed (a slip
+        # against the spin's share of v_Gx): then the CM's velocity, so the
+        # rule never adds energy
         y[1] = 0.0
-        y[3] = dpost
+        y[3] = dpost if abs(dpost) <= abs(vgx) else vgx
         st = pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
         if disc[D_MODE] == MODE_REST:
             log_event(log, cnt, t, EV_REST, post, 0.0, 0.0, 0)

@@ -19,7 +19,7 @@ import sys
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
 from fastrock import Friction, Pulse, RigidBlock, Wall, simulate
@@ -415,7 +415,14 @@ def test_flight_against_a_plastic_wall_grazes_for_ever(mu_w):
     y0 = start_in_flight(par, 0.0, 0.0, 0.0, 0.0, BODY.h)
     r = run_any(par, pulse=Pulse(0.3, 1.0, sign=1), y0=y0, t_end=4.0, max_steps=20_000)
     assert r["status"] > 0, r["status"]
+
+
 @settings(max_examples=15, deadline=None, suppress_health_check=list(HealthCheck))
+# flat on the ground (theta rounding to -4.6e-21) sliding into the wall: the rocking start gives
+# theta = 0 at once, a ground impact below the rest rule's speed; keeping the new corner's slip
+# velocity there raised the kinetic energy by 4.6e-11 (the rule now never adds energy)
+@example(theta0=-4.63e-21, omega0=0.0, vx0=-0.5, lift=0.0, mu=0.15, mu_w=0.1, e_w=0.0, gap=0.01,
+         amp=0.0, f=1.0, sg=1, side=1)
 @given(theta0=st.floats(-0.1, 0.1), omega0=st.floats(-1.0, 1.0), vx0=st.floats(-0.5, 0.5),
        lift=st.floats(0.0, 0.1), mu=st.sampled_from([0.15, 0.3, 0.6]),
        mu_w=st.sampled_from([0.1, 0.5, 2.0]), e_w=st.sampled_from([0.0, 0.5, 1.0]),
