@@ -386,12 +386,13 @@ def test_probe_pulses_with_wall_friction(mu_w):
 
 
 # ------------------------------------------------------------------ energy over runs
-def run_any(par, pulse=None, y0=None, t_end=4.0, rtol=1e-10, cap=100_000, max_steps=100_000):
+def run_any(par, pulse=None, y0=None, t_end=4.0, rtol=1e-10, cap=100_000, max_steps=100_000, body=BODY,
+            vertical=None):
     """``test_contact_core.run`` that keeps a failed run (its history up to the failure): the
     energy checks hold for every stored step, whatever the status."""
     from fastrock.kernels.hybrid import C_NHIST, C_NLOG, N_COUNTERS
     from fastrock.running.solver import Solver
-    hdr, smp = to_header(BODY, pulse, None)
+    hdr, smp = to_header(body, pulse, vertical)
     opt = Solver(rtol=rtol, max_steps=max_steps).options(t_end, False)
     y = np.array(y0, float)
     met = np.zeros(L.N_MET)
@@ -402,7 +403,7 @@ def run_any(par, pulse=None, y0=None, t_end=4.0, rtol=1e-10, cap=100_000, max_st
     code = C.contact_simulate(y, par, hdr, smp, opt, np.empty(0), met, ht, hy, hd, log, cnt)
     n = int(cnt[C_NHIST])
     return dict(status=int(code), met=met, t=ht[:n], y=hy[:n], d=hd[:n],
-                log=log[:int(cnt[C_NLOG])])
+                log=log[:int(cnt[C_NLOG])], y_end=y)
 
 
 @pytest.mark.xfail(strict=True, reason="pre-existing (mu_w = 0 too, HEAD 8c52239): a plastic wall "
