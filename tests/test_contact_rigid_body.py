@@ -306,3 +306,22 @@ def test_bad_input_errors_name_the_field():
             fr.simulate(ASYM, Pulse(3.0, 2.0), wall=Wall(gap=0.02), **fx)
     with pytest.raises(ValueError, match="foundation= is not available for it yet"):
         fr.simulate(ASYM, Pulse(3.0, 2.0), foundation=fr.LinearVibration(1e5), mass=10.0)
+
+
+def test_study_runs_an_asymmetric_body_with_friction(tmp_path):
+    from fastrock import SampledMotion
+    from fastrock.io.default_records import load_default_record
+    from fastrock.studies.definition import Study
+    from fastrock.studies.run import run_study
+    rec = load_default_record()
+    rec = type(rec)(rec.acc[:400], rec.dt, name="El Centro, first 8 s")
+    body = RigidBody.from_polygon(WEDGE, mass=1.0)
+    study = Study(records=[rec], bodies=[body], levels=[0.2, 0.6], t_after=2.0,
+                  variants=[{"name": "sliding", "friction": {"mu_s": 0.3}}])
+    df = run_study(study, tmp_path / "out", progress=False)
+    assert set(df["kernel"]) == {"contact_body"} and len(df) == 2
+    for _, row in df.iterrows():
+        r = fr.simulate(body, SampledMotion.from_record(rec, scale=row["scale"]), t_after=2.0,
+                        friction=Friction(0.3))
+        assert r.status == row["status"]
+        assert r.metrics["max_rotation_ratio"] == row["max_rotation_ratio"]
