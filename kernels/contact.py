@@ -17,9 +17,10 @@ to the centre of mass (CM):
 Body-frame (a, c) maps to world (a cos th + c sin th, -a sin th + c cos th)
 (physics.md 0).  Gravity is the vector (0, -G), G = g + a_v, written in one
 place only (``free_acc``); the horizontal ground acceleration enters as the
-d'Alembert force -a_g.  The flat configuration assumes a level base
-(h1 = h2); the rocking ground-impact map (``ground_impact``, the map of
-kernels/friction.py) assumes the symmetric block b1 = b2, h1 = h2.
+d'Alembert force -a_g.  The base is level (h1 = h2: the flat configuration
+and the rocking ground-impact map ``corner_impact`` assume it); the two
+sides may differ in width (b1 != b2, an asymmetric body, issue #17), each
+pivot with its own alpha and restitution.
 
 State
 -----
@@ -80,9 +81,10 @@ reaches the ground first moving down (K_LAND0, K_LAND1): plastic normal
 impact with Coulomb friction (stick if |L_t| <= mu_s L_n, else Routh's
 incremental slipping impact), flat two-point landing when the other
 corner is on the ground and would penetrate.  Ground impacts while rocking
-(theta crosses 0) use the map of kernels/friction.py (restitution e,
-algebraic slip rule, Routh's method where it fails), so mu = inf
-reproduces kernels/rigid.py and finite mu kernels/friction.py.  After every
+(theta crosses 0) use the map of kernels/friction.py with the sides apart
+(``corner_impact``: restitution e of the impact, algebraic slip rule,
+Routh's method where it fails), so mu = inf reproduces kernels/rigid.py
+(its rigid_body entries for b1 != b2) and finite mu kernels/friction.py.  After every
 impact the mode is picked again.  Stick-slip and impact chatter end by the
 rest rule (O_EPS_OMEGA, O_EPS_T) as in kernels/friction.py.
 
@@ -103,7 +105,9 @@ Events (g > 0 admissible; inactive ones return inf)
 Parameters (``par``, N_PAR entries)
 -----------------------------------
  0-4 as kernels/rigid.py: P_ALPHA, P_P, P_E (ground restitution e),
-     P_G, P_THETA_OVER (so rigid.overturned etc. apply)
+     P_G, P_THETA_OVER (so rigid.overturned etc. apply); as in its
+     rigid_body entries P_ALPHA and P_E belong to the right pivot (+1:
+     its alpha, the impact leaving it), C_ALPHA_NEG, C_E_NEG to the left
  5   P_WALL_SIDE w = +-1 (kernels/rigid.py index)
  7   P_E_W wall restitution e_w (kernels/rigid.py index)
  10  C_B1  m, half-width left of the CM  (= friction Q_B)
@@ -117,8 +121,11 @@ Parameters (``par``, N_PAR entries)
  18  C_MU_W wall friction mu_w (0: frictionless; static = kinetic)
  19  C_HT1 m, height of the top-left corner above the CM
  20  C_HT2 m, height of the top-right corner above the CM
+ 21  C_E_NEG     restitution of a ground impact from pivot -1 onto +1
+ 22  C_ALPHA_NEG rad, alpha of the left pivot
 A friction parameter vector (kernels/friction.py) extended to N_PAR with
-C_B2 = Q_B, C_H2 = Q_H is a valid contact parameter vector.
+C_B2 = Q_B, C_H2 = Q_H, C_E_NEG = P_E, C_ALPHA_NEG = P_ALPHA is a valid
+contact parameter vector.
 
 Metrics
 -------
@@ -141,7 +148,7 @@ import numpy as np
 from .config import jit, jit_parallel
 from .excitation import excitation_end, ground
 from .friction import kinetic as fr_kinetic
-from .friction import corner_impact, routh_general
+from .friction import routh_general
 from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
                      sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, D_WALL_REST,
@@ -160,8 +167,9 @@ from .rigid import (P_ALPHA, P_E, P_E_W, P_G, P_THETA_OVER, P_WALL_SIDE,
                     track_rotation)
 
 # ---- parameters and flight metrics: kernels/layout.py ----------------------
-from .layout import (C_B1, C_B2, C_GAP, C_H1, C_H2, C_HT1, C_HT2,  # noqa: E402,F401
-                     C_IG, C_MU_K, C_MU_S, C_MU_W, M_MAX_JUMP, M_N_FLIGHTS,
+from .layout import (C_ALPHA_NEG, C_B1, C_B2, C_E_NEG, C_GAP, C_H1,  # noqa: E402,F401
+                     C_H2, C_HT1, C_HT2, C_IG, C_MU_K, C_MU_S, C_MU_W,
+                     M_MAX_JUMP, M_N_FLIGHTS,
                      M_T_FLIGHT, N_PAR_CONTACT as N_PAR)
 N_STATE = 6
 assert M_MAX_JUMP < N_MET
@@ -252,6 +260,12 @@ def frame(k, par):
 @jit
 def hmid(par):
     return 0.5 * (par[C_H1] + par[C_H2])
+
+
+@jit
+def alpha_of(s, par):
+    """alpha of pivot s (+1 right: P_ALPHA, -1 left: C_ALPHA_NEG)."""
+    return par[P_ALPHA] if s > 0 else par[C_ALPHA_NEG]
 
 
 @jit
@@ -693,7 +707,7 @@ def event(k, t, y, par, disc, hdr, smp):
             return par[P_THETA_OVER] - abs(y[0]), -sg * y[1], True
         if k == K_PASS_ALPHA:
             sg = 1.0 if y[0] >= 0.0 else -1.0
-            return par[P_ALPHA] - abs(y[0]), -sg * y[1], False
+            return alpha_of(sg, par) - abs(y[0]), -sg * y[1], False
         if k == K_LAND0 or k == K_LAND1 or k == K_WALL:
             if k == K_WALL and not wall_active(par):
                 return np.inf, 0.0, True
@@ -748,7 +762,7 @@ def event(k, t, y, par, disc, hdr, smp):
     if k == K_OVERTURN:
         return par[P_THETA_OVER] - s * y[0], -s * y[1], True
     if k == K_PASS_ALPHA:
-        return par[P_ALPHA] - s * y[0], -s * y[1], False
+        return alpha_of(s, par) - s * y[0], -s * y[1], False
     if k == K_SLIP and mode != MODE_ROCK:
         return np.inf, 0.0, True
     if k == K_STICK and mode != MODE_SLIDE_ROCK:
@@ -1389,12 +1403,55 @@ def kinetic_energy(y, par):
 
 
 @jit
+def corner_impact(pre, vs, s, bk, bj, h, iG, e, mu_s, mu_k):
+    """(theta'+, d'+) of the ground impact from pivot s (half-width bk) onto
+    the new corner -s (half-width bj) of a level base (CM height h), per
+    unit mass, from theta'- = pre and the old pivot's slip velocity vs:
+    kernels/friction.py's map (physics.md 4.3) with the sides apart.  A
+    plastic impact with stick at the new corner, theta'+ = e theta'- +
+    (h / i_0j) vs, e the restitution of this impact (the angular-momentum
+    map (i_G + h^2 - bk bj) / i_0j, Housner's e for the rectangle, or a
+    given one); then the impulse-ratio check, the algebraic slipping impact
+    and Routh's incremental impact where the algebraic rule fails.  With
+    bk = bj every operation is friction.corner_impact's (bit-identical)."""
+    i0 = iG + bj * bj + h * h
+    post = e * pre + (h / i0) * vs
+    if vs != 0.0 and fr_kinetic(post, 0.0, -s, bj, h, iG) > \
+            fr_kinetic(pre, vs, s, bk, h, iG):
+        # a given e unlike the plastic one: the plastic stick (angular
+        # momentum about the new corner kept), which always dissipates
+        post = ((iG + h * h - bk * bj) / i0) * pre + (h / i0) * vs
+    # impulses (lam_x, lam_y) of the stick impact; bk / bj = 1 exactly for
+    # equal sides, so lam_y rounds as friction.py's -s b (post + pre)
+    lam_x = h * post - (vs + h * pre)
+    lam_y = -s * bj * (post + (bk / bj) * pre)
+    dpost = 0.0
+    if abs(lam_x) > mu_s * lam_y:
+        sigma = -1.0 if lam_x > 0.0 else 1.0
+        k = mu_k * sigma * h + s * bj
+        post = pre * (iG - k * s * bk) / (iG + k * s * bj)
+        lam_y = -s * bj * (post + (bk / bj) * pre)
+        dpost = vs + h * pre - h * post - mu_k * sigma * lam_y
+        if (sigma * dpost < 0.0 or lam_y <= 0.0
+                or fr_kinetic(post, dpost, -s, bj, h, iG)
+                > fr_kinetic(pre, vs, s, bk, h, iG)):
+            # Routh's method with the contact velocity of the new corner,
+            # (v_t, v_n) = (vs, s (bk + bj) pre)
+            w11 = 1.0 + h * h / iG
+            w12 = -s * bj * h / iG
+            w22 = 1.0 + bj * bj / iG
+            pt, pn, vt = routh_general(w11, w12, w22, vs,
+                                       s * (bk + bj) * pre, mu_s, mu_k)
+            post = pre + (-h * pt + s * bj * pn) / iG
+            dpost = vt
+    return post, dpost
+
+
+@jit
 def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
-    """theta reached 0 while rocking on s: the map of kernels/friction.py
-    (physics.md 1 and 4.3; symmetric block): stick impact at the new corner
-    with restitution e, theta'+ = e theta'- + (h / i_0) v_s, then the
-    impulse-ratio check, the algebraic slipping impact and Routh's
-    incremental impact where the algebraic rule fails."""
+    """theta reached 0 while rocking on s: ``corner_impact`` from pivot s
+    onto -s (level base, h1 = h2), with the restitution of that impact
+    (P_E leaving pivot +1, C_E_NEG leaving -1)."""
     s = disc[D_PIVOT]
     j_old = 1 if s > 0 else 0
     if 1 - j_old == near_index(par) and near_at_wall(y, par):
@@ -1406,18 +1463,23 @@ def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
                            False)
     _g, _vn, vs = point_kin(j_old, y, par)
     pre = y[1]
-    e = par[P_E]
-    b = par[C_B1]
+    if s > 0:
+        e = par[P_E]
+        bk = par[C_B2]
+        bj = par[C_B1]
+    else:
+        e = par[C_E_NEG]
+        bk = par[C_B1]
+        bj = par[C_B2]
     h = par[C_H1]
     iG = par[C_IG]
-    i0 = iG + b * b + h * h
     met[M_IMPACTS] += 1
     chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
     met[M_T_LAST_IMPACT] = t
-    post, dpost = corner_impact(pre, vs, s, b, h, iG, i0, e, par[C_MU_S],
+    post, dpost = corner_impact(pre, vs, s, bk, bj, h, iG, e, par[C_MU_S],
                                 par[C_MU_K])
-    check_energy(fr_kinetic(pre, vs, s, b, h, iG),
-                 fr_kinetic(post, dpost, -s, b, h, iG), met)
+    check_energy(fr_kinetic(pre, vs, s, bk, h, iG),
+                 fr_kinetic(post, dpost, -s, bj, h, iG), met)
     log_event(log, cnt, t, EV_IMPACT, pre, post, 0.0, -s)
     # new pivot -s: theta = 0, its velocity (dpost, 0)
     j = 1 - j_old
@@ -1426,11 +1488,16 @@ def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     rx, ry = point_offset(j, 0.0, par)
     hm = hmid(par)
     # v_G = v_c - theta' (ry, -rx)
-    set_cm_velocity(y, par, dpost - post * ry, post * rx, post)
+    vgx = dpost - post * ry
+    set_cm_velocity(y, par, vgx, post * rx, post)
     y[4] = -(ry + hm)
     if abs(post) < opt[O_EPS_OMEGA] or chatter:
+        # the rest rule stops the rotation and keeps the new corner's slip
+        # velocity, unless that exceeds the CM's horizontal speed (a slip
+        # against the spin's share of v_Gx): then the CM's velocity, so the
+        # rule never adds energy
         y[1] = 0.0
-        y[3] = dpost
+        y[3] = dpost if abs(dpost) <= abs(vgx) else vgx
         st = pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
         if disc[D_MODE] == MODE_REST:
             log_event(log, cnt, t, EV_REST, post, 0.0, 0.0, 0)
@@ -2357,7 +2424,7 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
                 return SAFE_NO_UPLIFT
             return SAFE_REST
         if mode == MODE_WALL_REST:
-            if abs(y[0]) > par[P_ALPHA]:
+            if abs(y[0]) > alpha_of(disc[D_PIVOT], par):
                 return LEANING
             return SAFE_REST
         if trapped_on_wall(t, y, par, disc, hdr):
@@ -2441,3 +2508,9 @@ def contact_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
 def contact_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
     """Independent runs in parallel (rows of Y0/PAR/HDR/OPT)."""
     sweep_rows(run, Y0, PAR, HDR, smp, OPT, status, MET, YF)
+
+
+# the asymmetric RigidBody's registry entry (model "contact_body") runs the
+# same kernel; its own entry names keep the plug-in contract (rule 2)
+contact_body_simulate = contact_simulate
+contact_body_sweep = contact_sweep

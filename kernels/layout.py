@@ -242,8 +242,10 @@ N_PAR_FOUNDATION = 24
 
 # planar rigid body with contact points (kernels.contact), after the rigid
 # entries (P_WALL_SIDE and P_E_W as the wall model); the first five share the
-# friction model's indices, so a friction vector padded with C_B2 = Q_B and
-# C_H2 = Q_H is a contact vector
+# friction model's indices, so a friction vector padded with C_B2 = Q_B,
+# C_H2 = Q_H, C_E_NEG = P_E and C_ALPHA_NEG = P_ALPHA is a contact vector;
+# as in the rigid_body entries, P_ALPHA and P_E belong to the right pivot
+# (+1: its alpha, the impact leaving it) and the *_NEG entries to the left
 C_B1 = 10           # m, half-width left of the centre of mass
 C_H1 = 11           # m, CM height above the left base corner
 C_IG = 12           # m^2, I_G / M
@@ -255,6 +257,8 @@ C_GAP = 17          # m, clear wall gap d (inf: no wall)
 C_MU_W = 18         # wall friction mu_w (0: frictionless)
 C_HT1 = 19          # m, height of the top-left corner above the CM
 C_HT2 = 20          # m, height of the top-right corner above the CM
+C_E_NEG = 21        # ground restitution of an impact from pivot -1 onto +1
+C_ALPHA_NEG = 22    # rad, alpha of the left pivot (-1)
 N_PAR_CONTACT = 24
 LIFT_OFF_FLIGHT = 2   # Friction(lift_off="flight"): the contact model flies
 

@@ -42,6 +42,8 @@ def cpar(body, mu=math.inf, mu_k=None, gap=math.inf, side=-1, e_w=1.0):
     par[C.C_H1] = par[C.C_H2] = h
     par[C.C_HT1] = par[C.C_HT2] = h
     par[C.C_IG] = body.g * math.sqrt(R2) / body.p ** 2 - R2
+    par[C.C_E_NEG] = par[C.P_E]
+    par[C.C_ALPHA_NEG] = par[C.P_ALPHA]
     par[C.C_MU_S] = mu
     par[C.C_MU_K] = mu if mu_k is None else mu_k
     par[C.C_GAP] = gap

@@ -43,7 +43,8 @@ def test_a_scene_selects_exactly_its_model(body, kw, name):
 
 def test_every_entry_names_its_kernels_and_columns():
     from fastrock.analyses.spectrum import SPECTRUM_COLUMNS
-    assert set(registry.MODELS) == {"rigid", "rigid_body", "rigid_wall", "rigid_friction", "contact", "flexible",
+    assert set(registry.MODELS) == {"rigid", "rigid_body", "rigid_wall", "rigid_friction", "contact", "contact_body",
+                                    "flexible",
                                     "flexible_friction", "flexible_wall", "flexible_flight", "two_spring", "switching",
                                     "linear_sdof"}
     for m in registry.MODELS.values():

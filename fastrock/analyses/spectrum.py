@@ -308,7 +308,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     attrs = dict(kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e, pulse=pulse, solver=solver.name,
                  amplitude_unit=amplitude_unit, frequency_unit=frequency_unit,
                  slope=ground.slope if ground is not None else 0.0)
-    if spec.name == "rigid_body":
+    if spec.model.body == "rigid_body":      # an asymmetric body, in any of its models
         attrs.update(alpha1=body.alpha1, alpha2=body.alpha2, p1=body.p1, p2=body.p2, e12=body.e12,
                      e21=body.e21, ratio_side=body.smaller_side)
     if out is not None:

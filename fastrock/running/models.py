@@ -132,19 +132,25 @@ def _rectangle(body):
     return R * np.sin(body.alpha), R * np.cos(body.alpha)
 
 
-def contact_par(body: RigidBlock, friction, wall=None):
-    """Parameters of the contact model (kernels/contact.py): a symmetric block whose base
-    corners touch the ground with ``friction`` (mu_s may be inf), and a tall wall (its Coulomb
-    coefficient ``wall.friction``, 0: frictionless)."""
+def contact_par(body, friction, wall=None):
+    """Parameters of the contact model (kernels/contact.py): a RigidBlock, or an asymmetric
+    RigidBody on a level base, whose base corners touch the ground with ``friction`` (mu_s may be
+    inf), and a tall wall (its Coulomb coefficient ``wall.friction``, 0: frictionless)."""
     from fastrock.kernels import layout as K
+    from fastrock.model.rigid_body import RigidBody
     par = np.zeros(K.N_PAR_CONTACT)
-    par[: K.N_PAR_RIGID] = rigid_par(body)
-    b, h = _rectangle(body)
-    R2 = b * b + h * h
-    par[K.C_B1] = par[K.C_B2] = b
-    par[K.C_H1] = par[K.C_H2] = h
-    par[K.C_HT1] = par[K.C_HT2] = h
-    par[K.C_IG] = body.g * np.sqrt(R2) / body.p ** 2 - R2
+    if isinstance(body, RigidBody):
+        _contact_body_geometry(par, body, wall)
+    else:
+        par[: K.N_PAR_RIGID] = rigid_par(body)
+        b, h = _rectangle(body)
+        R2 = b * b + h * h
+        par[K.C_B1] = par[K.C_B2] = b
+        par[K.C_H1] = par[K.C_H2] = h
+        par[K.C_HT1] = par[K.C_HT2] = h
+        par[K.C_IG] = body.g * np.sqrt(R2) / body.p ** 2 - R2
+        par[K.C_E_NEG] = par[K.P_E]
+        par[K.C_ALPHA_NEG] = par[K.P_ALPHA]
     par[K.C_MU_S] = friction.mu_s
     par[K.C_MU_K] = friction.mu_k
     par[K.C_GAP] = np.inf
@@ -152,12 +158,66 @@ def contact_par(body: RigidBlock, friction, wall=None):
         if wall.gap == 0.0:
             raise ValueError("wall: gap = 0 (Hogan's one-sided rocking) is not in the contact model yet; "
                              "run it without friction and flight (the wall model)")
-        if wall.height is not None and wall.height < 2.0 * h:
-            raise ValueError("wall: a wall lower than the block (height < 2h) is not in the contact model "
-                             "yet; run it without friction and flight (the wall model)")
+        top = par[K.C_HT2] if wall.side > 0 else par[K.C_HT1]
+        if wall.height is not None and wall.height < par[K.C_H1] + top:
+            raise ValueError("wall: a wall lower than the block (height < 2h; for a RigidBody, than its "
+                             "wall-side top corner) is not in the contact model yet; run it without "
+                             "friction and flight (the wall model)")
         par[K.P_WALL_SIDE] = float(wall.side)
         par[K.P_E_W] = wall.restitution
         par[K.C_GAP] = wall.gap
         par[K.C_MU_W] = wall.friction
     return par
 
+
+#: A RigidBody's two base heights h1, h2 count as one level base within this relative tolerance
+#: (a polygon's lowest facet gives them equal up to rounding).
+LEVEL_BASE_RTOL = 1e-9
+
+
+def _contact_body_geometry(par, body, wall):
+    """The body entries of the contact model for an asymmetric RigidBody: each pivot its own
+    half-width, alpha and impact restitution (P_* for the right pivot as in ``rigid_body_par``,
+    C_*_NEG for the left).  The base must be level (h1 = h2).  With a wall, the wall-side face is
+    taken vertical above its pivot, up to the top of the outline."""
+    from fastrock.kernels import layout as K
+    h1, h2 = body.h1, body.h2
+    if abs(h1 - h2) > LEVEL_BASE_RTOL * max(h1, h2):
+        raise ValueError(f"h1 = {h1:.6g} m and h2 = {h2:.6g} m differ: friction=, wall= and flight need a "
+                         f"level base (h1 = h2; the contact model's flat contact and sliding are on one "
+                         f"line through both pivots); a RigidBody from a polygon or a mesh rests on its "
+                         f"lowest facet and has one. Without those effects it runs in the rocking model")
+    h = 0.5 * (h1 + h2)
+    par[K.P_ALPHA] = body.alpha2
+    par[K.P_P] = body.p2
+    par[K.P_E] = body.e21
+    par[K.P_G] = body.g
+    par[K.P_THETA_OVER] = body.theta_over
+    par[K.C_ALPHA_NEG] = body.alpha1
+    par[K.C_E_NEG] = body.e12
+    par[K.C_B1] = body.b1
+    par[K.C_B2] = body.b2
+    par[K.C_H1] = par[K.C_H2] = h
+    par[K.C_IG] = body.inertia / body.mass
+    par[K.C_HT1] = par[K.C_HT2] = h
+    if wall is not None:
+        par[K.C_HT1] = par[K.C_HT2] = _wall_side_top(body, wall.side)
+    return par
+
+
+def _wall_side_top(body, side):
+    """Height [m] above the centre of mass of the wall-side top corner of a RigidBody: the top of
+    its outline, the wall-side face being taken vertical above the pivot (so no point of the body
+    reaches the wall before that corner does)."""
+    if body.outline is None:
+        raise ValueError("wall: a RigidBody needs its outline (RigidBody.from_polygon, from_mesh or "
+                         "outline=) for the wall contact: its top corner on the wall side")
+    P = np.asarray(body.outline, float)
+    bw = body.b2 if side > 0 else body.b1
+    reach = float((side * P[:, 0]).max())
+    if reach > bw * (1.0 + 1e-9):
+        raise ValueError(f"wall: the outline reaches {reach:.6g} m past the centre of mass on the wall "
+                         f"side (side={side:+d}), beyond its pivot at {bw:.6g} m: an overhang toward the "
+                         f"wall is not in the contact model (its wall-side face is vertical above the "
+                         f"pivot); put the wall on the other side or use a body without the overhang")
+    return float(P[:, 1].max())

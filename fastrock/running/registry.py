@@ -196,6 +196,15 @@ _EFFECT_FIELDS = {"wall": "wall=", "friction": "friction=", "flight": "friction=
                   "foundation": "foundation="}
 
 
+#: Why an asymmetric RigidBody cannot run an effect set yet (the others: the generic message).
+_RIGID_BODY_REFUSED = {
+    fx: "wall= with an asymmetric RigidBody is not available yet: the wall's contact angle (Wall) is "
+        "defined by a RigidBlock's half-height h; friction= and Friction(lift_off='flight') run the body "
+        "(the contact model)"
+    for fx in (frozenset({"wall"}), frozenset({"wall", "friction"}), frozenset({"wall", "flight"}),
+               frozenset({"wall", "friction", "flight"}))}
+
+
 def scene_effects(wall=None, friction=None, foundation=None):
     """The effects a scene calls for, each validated; friction that can
     never slip (mu_s = inf) is no effect at all."""
@@ -235,10 +244,11 @@ def lookup(body, effects):
     if model is None:
         generic = frozenset(effects)
         if kind == "rigid_body":
-            raise ValueError("asymmetric bodies run in the two-sided rocking model only so far: "
-                             f"{', '.join(_EFFECT_FIELDS[k] for k in sorted(generic))} is not available for a "
-                             "RigidBody whose sides differ (b1 != b2 or h1 != h2); a symmetric RigidBody runs "
-                             "everywhere as its RigidBlock")
+            raise ValueError(_RIGID_BODY_REFUSED.get(generic) or (
+                "an asymmetric RigidBody (b1 != b2 or h1 != h2) runs the two-sided rocking model and, with "
+                "friction= and Friction(lift_off='flight'), the contact model; "
+                f"{', '.join(_EFFECT_FIELDS[k] for k in sorted(generic))} is not available for it yet; a "
+                "symmetric RigidBody runs everywhere as its RigidBlock"))
         if "foundation" in generic and kind != "rigid":
             raise ValueError("foundation= is available for RigidBlock only (the flexible "
                              "foundation models carry a rigid block)")
@@ -304,6 +314,11 @@ def _contact(body, fx, mass):
     return contact_par(body, fx.get("friction") or fx.get("flight"), fx.get("wall"))
 
 
+def _contact_body(body, fx, mass):
+    from fastrock.running.models import contact_par
+    return contact_par(body, fx.get("friction") or fx["flight"], fx.get("wall"))
+
+
 def _foundation(body, fx, mass):
     from fastrock.model.foundation import foundation_par
     return foundation_par(body, fx["foundation"], mass)
@@ -354,6 +369,17 @@ register(Model(
             "slide-rock, free flight and landing, wall impacts; the generic mode solve",
     also=(frozenset({"flight"}), frozenset({"friction", "flight"}), frozenset({"wall", "flight"}),
           frozenset({"wall", "friction", "flight"}))))
+# the contact kernel flies at lift-off whatever Friction.lift_off says: "flight" is among the
+# entry's own effects, so its results carry the flight metrics
+register(Model(
+    "contact_body", "contact", "rigid_body", frozenset({"friction", "flight"}),
+    ("theta", "theta_dot", "d", "d_dot", "z", "z_dot"), _contact_body,
+    columns=_FRICTION_COLUMNS + ("flights", "time_flight", "max_jump"),
+    outcomes=("safe", "slide", "mode1", "mode2", "failed"),
+    toml_keys=("body", "friction"),
+    summary="asymmetric rigid body (RigidBody, level base) in the contact model: rest, slide, rock, "
+            "slide-rock, free flight and landing, each pivot its own alpha and impact map",
+    also=(frozenset({"friction"}), frozenset({"flight"}))))
 register(Model(
     "flexible", "flexible", "flexible", frozenset(), ("u", "u_dot", "theta", "theta_dot"),
     _flexible, columns=_FLEX_COLUMNS, outcomes=("safe", "mode1", "mode2", "flight", "failed"),
