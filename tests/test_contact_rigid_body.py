@@ -300,10 +300,9 @@ def test_bad_input_errors_name_the_field():
     with pytest.raises(ValueError, match=r"^wall: the outline reaches 0.5 m .*side=\+1"):
         contact_par(over, Friction(0.4), Wall(gap=0.02, side=1))
     contact_par(over, Friction(0.4), Wall(gap=0.02, side=-1))
-    # the front end does not take wall= for an asymmetric body yet, and says why
-    for fx in ({"friction": Friction(0.4)}, {"friction": Friction(INF, lift_off="flight")}, {}):
-        with pytest.raises(ValueError, match="^wall= with an asymmetric RigidBody is not available yet"):
-            fr.simulate(ASYM, Pulse(3.0, 2.0), wall=Wall(gap=0.02), **fx)
+    # the front end runs the same checks for wall= (tests/test_wall_rigid_body.py)
+    with pytest.raises(ValueError, match=r"^wall: the outline reaches 0.5 m .*side=\+1"):
+        fr.simulate(over, Pulse(3.0, 2.0), wall=Wall(gap=0.02, side=1))
     with pytest.raises(ValueError, match="foundation= is not available for it yet"):
         fr.simulate(ASYM, Pulse(3.0, 2.0), foundation=fr.LinearVibration(1e5), mass=10.0)
 

@@ -583,9 +583,6 @@ def test_asymmetric_early_exit_matches_full_spectrum():
 
 # ------------------------------------------------------------ bad input
 @pytest.mark.parametrize("kw,match", [
-    ({"wall": fr.Wall(gap=0.02)}, "^wall= with an asymmetric RigidBody is not available yet"),
-    ({"wall": fr.Wall(gap=0.02), "friction": fr.Friction(0.4)},
-     "^wall= with an asymmetric RigidBody is not available yet"),
     ({"foundation": fr.LinearVibration(1e5), "mass": 10.0},
      "^an asymmetric RigidBody .* foundation= is not available for it yet"),
 ])

@@ -6,6 +6,7 @@ import pandas as pd
 
 from fastrock import _validate as V
 from fastrock.model import excitation as X
+from fastrock.model.friction import Friction
 from fastrock.model.ground import as_ground
 from fastrock.running import registry
 from fastrock.running.outcomes import STATUS, outcome_of, status_of, warn_unstable
@@ -278,7 +279,9 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
             "amplitude_ratio": A[sl], "frequency_ratio": F[sl], "sign": S[sl].astype(int),
             "amplitude": amp[sl], "amplitude_g": amp[sl] / body.g, "frequency_hz": omega[sl] / (2 * np.pi),
         })
-        part = _add_results(part, st, met, body, wall, friction if spec.friction else None)
+        # a model with a slip state and no friction= (an asymmetric body beside a wall): never slips
+        part = _add_results(part, st, met, body, wall,
+                            (friction or Friction(np.inf, lift_off="flight")) if spec.friction else None)
         if spec.model.flight or spec.name == "contact":
             from fastrock.running.result import flight_metrics
             for k, v in flight_metrics(met).items():

@@ -39,8 +39,9 @@ class RigidBody:
     A body whose two sides agree (b1 = b2 and h1 = h2 to 1e-12 relative) is
     symmetric: every model runs it as its equivalent :class:`RigidBlock`
     (:meth:`to_block`).  An asymmetric body runs in the two-sided rocking
-    model (``simulate``, ``overturning_spectrum``); walls, friction, flight
-    and foundations refuse it so far.  Its early decisions (``early_exit``)
+    model (``simulate``, ``overturning_spectrum``) and, with walls, friction
+    or flight, in the contact model (a level base, h1 = h2); foundations
+    refuse it so far.  Its early decisions (``early_exit``)
     hold per side: a run stops as safe once the energy is below the barrier
     of both the side it rocks on next and the other side after the impact,
     and a fall past alpha_k completes in closed form on that side.
@@ -240,6 +241,27 @@ class RigidBody:
     def pivots(self):
         """((-b1, -h1), (b2, -h2)): the pivots relative to the centre of mass [m]."""
         return (-self.b1, -self.h1), (self.b2, -self.h2)
+
+    def wall_face_top(self, side):
+        """Height [m] above the centre of mass of the top of the body's face toward a wall on
+        ``side`` (+1 right, -1 left): the top of its outline, the face taken vertical above that
+        side's pivot, so no point of the body reaches the wall before that corner does (a face
+        leaning back from the wall touches it later: this contact angle is the conservative one).
+
+        Raises ValueError without an outline, or when the outline overhangs the pivot toward the
+        wall."""
+        if self.outline is None:
+            raise ValueError("wall: a RigidBody needs its outline (RigidBody.from_polygon, from_mesh or "
+                             "outline=) for the wall contact: its top corner on the wall side")
+        P = np.asarray(self.outline, float)
+        bw = self.b2 if side > 0 else self.b1
+        reach = float((side * P[:, 0]).max())
+        if reach > bw * (1.0 + 1e-9):
+            raise ValueError(f"wall: the outline reaches {reach:.6g} m past the centre of mass on the wall "
+                             f"side (side={side:+d}), beyond its pivot at {bw:.6g} m: an overhang toward the "
+                             f"wall is not in the contact model (its wall-side face is vertical above the "
+                             f"pivot); put the wall on the other side or use a body without the overhang")
+        return float(P[:, 1].max())
 
     # -------------------------------------------------------- reductions
     def to_block(self):

@@ -105,27 +105,36 @@ class Wall:
         """Pulse sign whose first half-cycle throws the block toward the wall."""
         return -self.side
 
-    @staticmethod
-    def _half_height(body):
-        if getattr(body, "kind", "") == "flexible":
-            return float(body.H)    # the outline: the 2B x 2H box turning with the base
+    def _face_height(self, body):
+        """Height [m] of the body's face toward the wall above its pivot: 2h for a block, 2H for a
+        flexible body (the 2B x 2H box turning with the base), h + the face's top for an
+        asymmetric RigidBody (:meth:`RigidBody.wall_face_top`)."""
+        kind = getattr(body, "kind", "")
+        if kind == "flexible":
+            return 2.0 * float(body.H)
+        if kind == "rigid_body" and not body.is_symmetric:
+            h = body.h2 if self.side > 0 else body.h1
+            return h + body.wall_face_top(self.side)
+        if kind == "rigid_body":
+            body = body.to_block()
         h = getattr(body, "h", None)
         if h is None:
             raise ValueError("a wall needs the block's half-height h to find the contact angle: build "
                              "the body with RigidBlock.rectangle(b, h) or RigidBlock.from_inertia(...)")
-        return float(h)
+        return 2.0 * float(h)
 
     def contact(self, body):
         """Which geometry branch sets the limit angle: "hogan" (d = 0),
         "tall" (top rear corner touches the wall), "short" (the rear face
-        touches the wall's top edge) or "none" (d >= 2h: never reached)."""
-        h = self._half_height(body)
+        touches the wall's top edge) or "none" (d >= 2h, the face height:
+        never reached)."""
+        face = self._face_height(body)
         d = self.gap
         if d == 0.0:
             return "hogan"
-        if self.height is not None and d * d + self.height ** 2 < 4.0 * h * h:
+        if self.height is not None and d * d + self.height ** 2 < face * face:
             return "short"
-        if d >= 2.0 * h:
+        if d >= face:
             return "none"
         return "tall"
 
@@ -149,7 +158,7 @@ class Wall:
             return math.atan2(d, self.height)
         if kind == "none":
             return math.inf
-        return math.asin(d / (2.0 * self._half_height(body)))
+        return math.asin(d / self._face_height(body))
 
     def fill_par(self, par, body):
         """Write the wall entries of the rigid kernel's parameter vector."""

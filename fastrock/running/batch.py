@@ -195,7 +195,8 @@ def _table(scenes, prepared, status, MET, theta_end, theta_dot_end, finished, in
             row.update({k: v[0].item() for k, v in flexible_metrics(met[None, :], scene.body).items()})
         if spec.friction:
             row.update({k: v[0].item() for k, v in friction_metrics(met[None, :], spec.flexible).items()})
-            if row["outcome"] == "safe" and abs(row["residual_slide"]) > scene.friction.slide_tolerance:
+            if (row["outcome"] == "safe" and scene.friction is not None
+                    and abs(row["residual_slide"]) > scene.friction.slide_tolerance):
                 row["outcome"] = "slide"
         if spec.model.flight or spec.name == "contact":
             row.update({k: v[0].item() for k, v in flight_metrics(met[None, :]).items()})

@@ -201,23 +201,5 @@ def _contact_body_geometry(par, body, wall):
     par[K.C_IG] = body.inertia / body.mass
     par[K.C_HT1] = par[K.C_HT2] = h
     if wall is not None:
-        par[K.C_HT1] = par[K.C_HT2] = _wall_side_top(body, wall.side)
+        par[K.C_HT1] = par[K.C_HT2] = body.wall_face_top(wall.side)
     return par
-
-
-def _wall_side_top(body, side):
-    """Height [m] above the centre of mass of the wall-side top corner of a RigidBody: the top of
-    its outline, the wall-side face being taken vertical above the pivot (so no point of the body
-    reaches the wall before that corner does)."""
-    if body.outline is None:
-        raise ValueError("wall: a RigidBody needs its outline (RigidBody.from_polygon, from_mesh or "
-                         "outline=) for the wall contact: its top corner on the wall side")
-    P = np.asarray(body.outline, float)
-    bw = body.b2 if side > 0 else body.b1
-    reach = float((side * P[:, 0]).max())
-    if reach > bw * (1.0 + 1e-9):
-        raise ValueError(f"wall: the outline reaches {reach:.6g} m past the centre of mass on the wall "
-                         f"side (side={side:+d}), beyond its pivot at {bw:.6g} m: an overhang toward the "
-                         f"wall is not in the contact model (its wall-side face is vertical above the "
-                         f"pivot); put the wall on the other side or use a body without the overhang")
-    return float(P[:, 1].max())

@@ -196,15 +196,6 @@ _EFFECT_FIELDS = {"wall": "wall=", "friction": "friction=", "flight": "friction=
                   "foundation": "foundation="}
 
 
-#: Why an asymmetric RigidBody cannot run an effect set yet (the others: the generic message).
-_RIGID_BODY_REFUSED = {
-    fx: "wall= with an asymmetric RigidBody is not available yet: the wall's contact angle (Wall) is "
-        "defined by a RigidBlock's half-height h; friction= and Friction(lift_off='flight') run the body "
-        "(the contact model)"
-    for fx in (frozenset({"wall"}), frozenset({"wall", "friction"}), frozenset({"wall", "flight"}),
-               frozenset({"wall", "friction", "flight"}))}
-
-
 def scene_effects(wall=None, friction=None, foundation=None):
     """The effects a scene calls for, each validated; friction that can
     never slip (mu_s = inf) is no effect at all."""
@@ -244,11 +235,11 @@ def lookup(body, effects):
     if model is None:
         generic = frozenset(effects)
         if kind == "rigid_body":
-            raise ValueError(_RIGID_BODY_REFUSED.get(generic) or (
+            raise ValueError(
                 "an asymmetric RigidBody (b1 != b2 or h1 != h2) runs the two-sided rocking model and, with "
-                "friction= and Friction(lift_off='flight'), the contact model; "
+                "wall=, friction= and Friction(lift_off='flight'), the contact model; "
                 f"{', '.join(_EFFECT_FIELDS[k] for k in sorted(generic))} is not available for it yet; a "
-                "symmetric RigidBody runs everywhere as its RigidBlock"))
+                "symmetric RigidBody runs everywhere as its RigidBlock")
         if "foundation" in generic and kind != "rigid":
             raise ValueError("foundation= is available for RigidBlock only (the flexible "
                              "foundation models carry a rigid block)")
@@ -316,7 +307,10 @@ def _contact(body, fx, mass):
 
 def _contact_body(body, fx, mass):
     from fastrock.running.models import contact_par
-    return contact_par(body, fx.get("friction") or fx["flight"], fx.get("wall"))
+    from fastrock.model.friction import Friction
+    # a wall alone: a pivot that never slips (the contact model follows a lift-off into flight)
+    friction = fx.get("friction") or fx.get("flight") or Friction(float("inf"), lift_off="flight")
+    return contact_par(body, friction, fx.get("wall"))
 
 
 def _foundation(body, fx, mass):
@@ -374,12 +368,14 @@ register(Model(
 register(Model(
     "contact_body", "contact", "rigid_body", frozenset({"friction", "flight"}),
     ("theta", "theta_dot", "d", "d_dot", "z", "z_dot"), _contact_body,
-    columns=_FRICTION_COLUMNS + ("flights", "time_flight", "max_jump"),
-    outcomes=("safe", "slide", "mode1", "mode2", "failed"),
-    toml_keys=("body", "friction"),
+    toml_keys=("body", "wall", "friction"),
     summary="asymmetric rigid body (RigidBody, level base) in the contact model: rest, slide, rock, "
-            "slide-rock, free flight and landing, each pivot its own alpha and impact map",
-    also=(frozenset({"friction"}), frozenset({"flight"}))))
+            "slide-rock, free flight and landing, wall impacts, each pivot its own alpha and impact map",
+    columns=_FRICTION_COLUMNS + ("flights", "time_flight", "max_jump", "toward_wall", "max_rotation_toward_wall",
+                                 "max_rotation_away_from_wall"),
+    outcomes=("safe", "slide", "mode1", "mode2", "leaning", "failed"),
+    also=(frozenset({"friction"}), frozenset({"flight"}), frozenset({"wall"}), frozenset({"wall", "friction"}),
+          frozenset({"wall", "flight"}), frozenset({"wall", "friction", "flight"}))))
 register(Model(
     "flexible", "flexible", "flexible", frozenset(), ("u", "u_dot", "theta", "theta_dot"),
     _flexible, columns=_FLEX_COLUMNS, outcomes=("safe", "mode1", "mode2", "flight", "failed"),

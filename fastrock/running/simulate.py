@@ -170,7 +170,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         metrics["stick_slip"] = int(metrics["stick_slip"])
         if "lift_offs" in metrics:
             metrics["lift_offs"] = int(metrics["lift_offs"])
-        if outcome == "safe" and abs(metrics["residual_slide"]) > friction.slide_tolerance:
+        # (friction None: an asymmetric body beside a wall, run with a pivot that never slips)
+        if outcome == "safe" and friction is not None and abs(metrics["residual_slide"]) > friction.slide_tolerance:
             outcome = "slide"
     if spec.model.flight or spec.name == "contact":
         metrics.update({k: v[0].item() for k, v in flight_metrics(met[None, :]).items()})
