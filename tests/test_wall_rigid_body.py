@@ -45,8 +45,10 @@ def test_mirror_body_mirror_wall_mirror_pulse():
 
 
 def test_wall_out_of_reach_is_no_wall():
-    """A wall farther than the face height is never touched: the same runs as the contact model
-    without a wall (a pivot that never slips, following lift-off into flight)."""
+    """A wall farther than the face height is never touched by a body that rocks: the same runs
+    as the contact model without a wall (a pivot that never slips, following lift-off into
+    flight). A body that flies moves sideways and may touch it while falling (3 of these 18 runs,
+    each after a flight; the outcome and max rotation stay those without the wall)."""
     far = BODY.h2 + BODY.wall_face_top(1)
     a = fr.overturning_spectrum(BODY, AMPS, FREQS, sign="both", wall=fr.Wall(1.01 * far, side=1), progress=False)
     b = fr.overturning_spectrum(BODY, AMPS, FREQS, sign="both", friction=fr.Friction(math.inf, lift_off="flight"),
@@ -54,7 +56,7 @@ def test_wall_out_of_reach_is_no_wall():
     assert list(a["outcome"].astype(str)) == list(b["outcome"].astype(str))
     # the same runs up to rounding (the regression suites' contract)
     np.testing.assert_allclose(a["max_rotation"], b["max_rotation"], rtol=1e-12, atol=0)
-    assert (a["wall_impacts"] == 0).all()
+    assert (a.loc[a["flights"] == 0, "wall_impacts"] == 0).all()
 
 
 def test_simulate_scene_and_bad_input(tmp_path):
