@@ -1,0 +1,50 @@
+"""The README's list of combinations that are not available yet (issue #13 item 3: "where a
+combination is refused, say why in the error, and list it in the README"): every registry
+refusal is in the list, and every scene in the list is refused with a message, not a crash."""
+from pathlib import Path
+
+import pytest
+
+import fastrock as fr
+from fastrock.running import registry
+
+README = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+BLOCK = fr.RigidBlock.rectangle(0.2, 0.8)
+FLEX = fr.FlexibleBody(alpha=0.25, p=2.0, omega_n_over_p=9.0)
+ASYM = fr.RigidBody.from_polygon([(0, 0), (1, 0), (0.2, 2)], mass=1.0)
+UNEVEN = fr.RigidBody(mass=1.0, inertia=0.1, b1=0.2, h1=0.8, b2=0.3, h2=0.9)
+FND = fr.LinearVibration(1e4)
+PULSE = fr.Pulse(1.0, 1.0)
+
+SCENES = [
+    (FLEX, {"wall": fr.Wall(0.05), "friction": fr.Friction(0.5)}, "FlexibleBody"),
+    (BLOCK, {"foundation": FND, "wall": fr.Wall(0.05)}, "foundation"),
+    (BLOCK, {"foundation": FND, "friction": fr.Friction(0.5)}, "foundation"),
+    (BLOCK, {"foundation": FND, "wall": fr.Wall(0.05), "friction": fr.Friction(0.5)}, "foundation"),
+    (FLEX, {"foundation": FND}, "foundation"),
+    (ASYM, {"foundation": FND}, "foundation"),
+    (BLOCK, {"wall": fr.Wall(0.0), "friction": fr.Friction(0.5)}, "gap = 0"),
+    (BLOCK, {"wall": fr.Wall(0.05, height=0.5), "friction": fr.Friction(0.5)}, "lower than the block"),
+    (UNEVEN, {"friction": fr.Friction(0.5)}, "h1 = "),
+]
+
+
+def test_readme_lists_the_refused_combinations():
+    text = " ".join(README.split())
+    assert "**Not available yet**" in text
+    for phrase in ("a `FlexibleBody` with `wall=` and `friction=` together",
+                   "`foundation=` together with `wall=` or `friction=`",
+                   "a `FlexibleBody` or an asymmetric `RigidBody` on a foundation",
+                   "a wall at gap 0 or lower than the body",
+                   "an asymmetric body whose two pivots are not level"):
+        assert phrase in text, phrase
+    # every refusal of the registry is one of the listed kinds
+    for (body, effects) in registry.NOT_AVAILABLE:
+        assert body == "flexible" and effects == {"wall", "friction"} or "foundation" in effects
+
+
+@pytest.mark.parametrize("body, kw, says", SCENES)
+def test_each_listed_scene_is_refused_with_a_reason(body, kw, says):
+    with pytest.raises(ValueError, match=None) as exc:
+        fr.simulate(body, PULSE, **kw)
+    assert says in str(exc.value)
