@@ -76,3 +76,13 @@ def test_simulate_scene_and_bad_input(tmp_path):
     if overhang.outline[:, 0].max() > overhang.b2 * (1 + 1e-9):
         with pytest.raises(ValueError, match="overhang"):
             fr.simulate(overhang, None, wall=fr.Wall(0.05, side=1), duration=1.0)
+
+
+def test_a_rounded_top_is_refused_beside_a_wall():
+    """The rounded top profile is stored but its wall contact is not modelled: a wall refuses it
+    rather than using the flat top's corner silently."""
+    import dataclasses
+    rounded = dataclasses.replace(BODY, top="rounded", top_radius=0.2)
+    fr.simulate(rounded, None, theta0=0.01, duration=0.5)                 # without a wall it runs
+    with pytest.raises(ValueError, match="top='rounded'"):
+        fr.simulate(rounded, None, wall=fr.Wall(0.05, side=1), duration=0.5)

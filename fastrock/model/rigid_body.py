@@ -66,8 +66,9 @@ class RigidBody:
     theta_over : float
         Rotation [rad] counted as overturning, above both alphas (default pi/2).
     top : str
-        Top profile for wall contact: "flat" (default) or "rounded" (with
-        ``top_radius`` [m]); stored, not used by the rocking model.
+        Top profile for wall contact: "flat" (default: the top corner of
+        the wall-side face touches the wall) or "rounded" (with
+        ``top_radius`` [m]; stored, refused with a wall so far).
     top_radius : float, optional
     outline : array, shape (n, 2), optional
         The body's outline relative to the centre of mass [m], for
@@ -250,6 +251,9 @@ class RigidBody:
 
         Raises ValueError without an outline, or when the outline overhangs the pivot toward the
         wall."""
+        if self.top != "flat":
+            raise ValueError(f"wall: top={self.top!r}: the wall contact of a rounded top is not in the contact "
+                             "model yet (it touches the wall with the top corner of a flat top); give top='flat'")
         if self.outline is None:
             raise ValueError("wall: a RigidBody needs its outline (RigidBody.from_polygon, from_mesh or "
                              "outline=) for the wall contact: its top corner on the wall side")
