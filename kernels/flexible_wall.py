@@ -183,18 +183,21 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
         (1.0 - math.cos(par[F_ALPHA]))
     if is_chatter(t, post, opt, met) or \
             elastic_below_resolution(par[FW_E_W], rebound, scale, opt):
-        settle_on_wall(t, y, par, disc, hdr, smp, log, cnt)
+        settle_on_wall(t, y, par, disc, hdr, smp, log, cnt, pre == 0.0)
     return RUNNING
 
 
 @jit
-def settle_on_wall(t, y, par, disc, hdr, smp, log, cnt):
+def settle_on_wall(t, y, par, disc, hdr, smp, log, cnt, stay):
     """End of a chatter sequence: plastic wall impact (u' + H theta'
-    kept), then rest on the wall if it pushes."""
+    kept), then rest on the wall if it pushes, or if ``stay``: an impact
+    at theta' = 0, i.e. a body released at a zero of the reaction that
+    the column brought back within one step, below the resolution in
+    theta (rocking again would meet the wall at the same t, for ever)."""
     y[1] += par[F_H] * y[3]
     y[3] = 0.0
     _fu, r, _dr = wall_rest_forces(t, y, par, hdr, smp)
-    if r >= 0.0:
+    if r >= 0.0 or stay:
         disc[D_MODE] = MODE_WALL_REST
         disc[D_WALL_REST] = 1
         log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[2], disc[D_PIVOT])

@@ -203,3 +203,21 @@ def test_elastic_wall_ends_as_an_almost_elastic_one(name):
         E = rigid_energy(el, body)
         free = t >= exc.end_time(body)
         assert np.all(np.diff(E[free]) <= 1e-12 * (1 - math.cos(body.alpha)))
+
+
+@pytest.mark.parametrize("ew", [1.0, 0.9])
+def test_flexible_release_at_a_grazing_reaction_ends(ew):
+    """fuzz flexible_wall:2026:180 (pivot-switch, zeta = 0, omega_n/p = 281): the body rests on
+    the wall, is released where the wall's reaction reaches 0, and the undamped column brings the
+    reaction back within one step, so the wall is met again at the same t with theta' = 0.  That
+    impact keeps the body on the wall; before, it rocked again and met the wall at the same t
+    until failed:transition-loop (e_w = 0.9 on the old kernels, e_w = 1 once elastic bounces
+    below the resolution end at the wall).  Now both end safe:rest, as e_w = 0.5 and 0.99 did."""
+    body = fr.FlexibleBody(alpha=0.14026876684597478, p=0.5667949614328123, omega_n_over_p=281.3431085655247,
+                           zeta=0.0, impact="pivot-switch", e=0.9534142860649281)
+    exc = fuzz_pulse(2.4345093653446, 0.12594426270962567, 1, "half-sine")
+    res = fr.simulate(body, exc, wall=fr.Wall(0.11161774045994016, side=-1, restitution=ew),
+                      solver=fr.Solver(rtol=1.884246682014534e-05), t_after=10.0, early_exit=True)
+    assert res.status == "safe:rest"
+    ev = res.events
+    assert (ev["event"] == "wall-rest").sum() > 0
