@@ -33,7 +33,12 @@ Wall impact (pivot kept, ``theta'+ = -e_w theta'-``):
   ``met[M_WALL_CAPPED]``.
 
 Chatter (physics.md 7: ``|theta'+| < eps_omega`` or two impacts closer
-than eps_t) ends in a plastic wall impact with u' + H theta' kept, and the
+than eps_t; or, as for the rigid block (:mod:`.wall`), an impact elastic at
+the tolerance, 1 - e_w^2 <= rtol, whose rebound energy, the kinetic energy
+the plastic map below would take, ``((u - s B)^2 + I_b/m) theta'+^2 / 2``,
+is below rtol g R0 (1 - cos alpha): an elastic wall under a steady push
+otherwise keeps the body bouncing at a constant speed below the
+resolution for ever) ends in a plastic wall impact with u' + H theta' kept, and the
 body rests on the wall (``theta = w theta_w``, ``theta' = 0``, mode
 MODE_WALL_REST) while the wall pushes on it; u keeps vibrating:
 ``u'' = f_u`` of physics.md 3.4 with theta'' = 0.  The wall's reaction is
@@ -69,14 +74,14 @@ from .layout import (D_MODE, D_PIVOT, D_WALL_REST, EV_FLIGHT, EV_WALL_IMPACT,
                      M_WALL_IMPACTS, N_DISC, O_EARLY_EXIT, O_T0, RUNNING,
                      SAFE_MOVING)
 from .rigid import track_rotation
+from .wall import SMALL_GAP_ANGLE, elastic_below_resolution
 
 N_EVENTS = 8
-# small-gap limit: a wall closer than this rotation [rad] (0.2 um for
-# 2H = 2 m) blocks every uplift toward it; the body then only rocks away
+# small-gap limit (SMALL_GAP_ANGLE of .wall, 0.2 um for 2H = 2 m): a
+# closer wall blocks every uplift toward it; the body then only rocks away
 # from the wall, as Hogan's gap-0 block does.  Without it an elastic wall
 # at a gap of nanometres makes the body bounce in that gap thousands of
 # times a second until the step budget runs out.
-SMALL_GAP_ANGLE = 1e-7
 R_WALL = 7          # while rocking on the near corner: w theta reaches theta_w
 # events at rest on the wall
 W_RELEASE = 0       # the wall's reaction reaches 0 (terminal)
@@ -173,19 +178,26 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     check_energy(before, kinetic(y, s, True, par), met)
     track_rotation(y[2], met)
     log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, y[2], s)
-    if is_chatter(t, post, opt, met):
-        settle_on_wall(t, y, par, disc, hdr, smp, log, cnt)
+    rebound = kinetic(y, s, True, par) - 0.5 * (y[1] + par[F_H] * post) ** 2
+    scale = par[F_G] * math.hypot(par[F_B], par[F_H]) * \
+        (1.0 - math.cos(par[F_ALPHA]))
+    if is_chatter(t, post, opt, met) or \
+            elastic_below_resolution(par[FW_E_W], rebound, scale, opt):
+        settle_on_wall(t, y, par, disc, hdr, smp, log, cnt, pre == 0.0)
     return RUNNING
 
 
 @jit
-def settle_on_wall(t, y, par, disc, hdr, smp, log, cnt):
+def settle_on_wall(t, y, par, disc, hdr, smp, log, cnt, stay):
     """End of a chatter sequence: plastic wall impact (u' + H theta'
-    kept), then rest on the wall if it pushes."""
+    kept), then rest on the wall if it pushes, or if ``stay``: an impact
+    at theta' = 0, i.e. a body released at a zero of the reaction that
+    the column brought back within one step, below the resolution in
+    theta (rocking again would meet the wall at the same t, for ever)."""
     y[1] += par[F_H] * y[3]
     y[3] = 0.0
     _fu, r, _dr = wall_rest_forces(t, y, par, hdr, smp)
-    if r >= 0.0:
+    if r >= 0.0 or stay:
         disc[D_MODE] = MODE_WALL_REST
         disc[D_WALL_REST] = 1
         log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[2], disc[D_PIVOT])

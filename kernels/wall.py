@@ -39,6 +39,37 @@ Maps and states
   kept, where r = e_w (the wall restitution is Hogan's r).  Each such
   impact counts as a ground and as a wall impact.  From rest the block
   uplifts only away from the wall (``w a_g > G tan(alpha)``).
+* Small-gap limit (``0 < theta_w < SMALL_GAP_ANGLE``, the flexible wall's
+  threshold): the wall is taken at theta = 0 and the block rocks as
+  Hogan's, with r = e^2 e_w.  Derivation: arriving at theta = 0 on the
+  far corner with theta'-, the Housner impact gives e theta'- on the near
+  corner, the wall (reached after theta_w / |theta'| s) -e_w e theta'-,
+  and the return to theta = 0 a second Housner impact, -e^2 e_w theta'-
+  back on the far corner; the moments act over a rotation theta_w only, so
+  as theta_w -> 0 the three impacts become one map, and an uplift toward
+  the wall is stopped at once (the block stays in contact, the wall takes
+  the push).  A bounce too slow to reach the wall (|theta'|^2 below about
+  2 p^2 theta_w) gives -e^2 theta'- instead: the same for e_w = 1, and
+  an energy below theta_w [M g R] otherwise.  Without the limit a wall at
+  a gap of nanometres (1e-10 rad) makes the block cycle through the three
+  impacts every few microseconds until the step budget runs out.  Such a
+  start on the near corner (0 < w theta0 <= theta_w) runs the d > 0 model
+  until its first ground impact, which puts it on the far corner.  The
+  combined impact counts as a ground and a wall impact; max rotations
+  toward the wall are 0 instead of theta_w (< 1e-7 rad).
+* Elastic bounces below the resolution: a wall impact elastic at the
+  tolerance (restitution r, e_w or Hogan's, with 1 - r^2 <= rtol) whose
+  rebound kinetic energy theta'+^2 / (2 p^2) is below rtol (1 - cos alpha)
+  [M g R] ends the sequence as chatter does (rest on the wall, or at d = 0
+  and small gaps the rest test at theta = 0).  An elastic wall does not
+  shorten the bounces, so under a steady push or after the excitation the
+  block bounces at a constant tiny speed for ever (one impact every
+  microsecond or so) and the chatter rule never fires.  Such a motion's
+  energy is below the error the solver's tolerance allows on the energy
+  (rtol times its scale, the barrier 1 - cos alpha): at the resolution
+  asked for the block is at rest, and resting drops that energy, never
+  adds any.  With 1 - r^2 > rtol the bounces converge (Zeno) and end by
+  the chatter rule, as before.
 
 Outcomes
 --------
@@ -66,10 +97,10 @@ from .hybrid import (check_energy, final_status, integrate_hybrid, is_chatter,
 from .layout import (D_MODE, D_PIVOT, D_STATIC, D_WALL_REST, EV_FLIGHT,
                      EV_REST, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
                      FLIGHT, LEANING, MODE_REST, MODE_ROCK, MODE_WALL_REST,
-                     M_IMPACTS, M_WALL_IMPACTS, N_DISC, O_EARLY_EXIT, O_T0,
-                     RUNNING, SAFE_BOUNDED, SAFE_REST)
+                     M_IMPACTS, M_WALL_IMPACTS, N_DISC, O_EARLY_EXIT, O_RTOL,
+                     O_T0, RUNNING, SAFE_BOUNDED, SAFE_REST)
 from .rigid import (K_FLIGHT, K_IMPACT, K_OVERTURN, P_ALPHA, P_E, P_E_W, P_G,
-                    P_HOGAN, P_THETA_OVER, P_THETA_W, P_WALL_SIDE,
+                    P_HOGAN, P_P, P_THETA_OVER, P_THETA_W, P_WALL_SIDE,
                     free_energy, ground_impact, init_state as rigid_init_state,
                     observe, overturned, peak_from_energy, rhs,
                     start_rocking_or_rest, theta_ddot, track_rotation,
@@ -79,6 +110,43 @@ from .rigid import static_margin as rest_margin
 
 N_EVENTS = 6
 K_WALL = 5
+# small-gap limit: a wall closer than this rotation [rad] is taken at
+# theta = 0 (see the module docstring); shared with the flexible wall
+SMALL_GAP_ANGLE = 1e-7
+
+
+@jit
+def one_sided(par):
+    """Hogan's one-sided rocking: gap 0, or the small-gap limit."""
+    return par[P_HOGAN] != 0.0 or par[P_THETA_W] < SMALL_GAP_ANGLE
+
+
+@jit
+def hogan_r(par):
+    """Restitution of the combined ground and wall impact: Hogan's r = e_w
+    at gap 0, e^2 e_w in the small-gap limit."""
+    if par[P_HOGAN] != 0.0:
+        return par[P_E_W]
+    return par[P_E] * par[P_E] * par[P_E_W]
+
+
+@jit
+def elastic_below_resolution(r, rebound, scale, opt):
+    """An impact elastic at the resolution asked for (restitution r with
+    1 - r^2 <= rtol: it dissipates less than rtol of the energy, so the
+    bounces do not converge) whose rebound energy is below rtol times the
+    energy scale of its model ends as chatter (module docstring)."""
+    rtol = opt[O_RTOL]
+    return 1.0 - r * r <= rtol and rebound < rtol * scale
+
+
+@jit
+def rigid_bounce_unresolved(r, post, par, opt):
+    """:func:`elastic_below_resolution` for the block: rebound energy
+    theta'+^2 / (2 p^2) [M g R], scale the barrier 1 - cos(alpha)."""
+    p = par[P_P]
+    return elastic_below_resolution(r, 0.5 * post * post / (p * p),
+                                    1.0 - math.cos(par[P_ALPHA]), opt)
 
 
 @jit_generic
@@ -122,15 +190,16 @@ def hogan_rest_margin(t, par, hdr, smp):
 def static_margin(t, y, par, disc, hdr, smp):
     if disc[D_MODE] == MODE_WALL_REST:
         return wall_rest_margin(t, par, hdr, smp)
-    if par[P_HOGAN] != 0.0:
+    if one_sided(par):
         return hogan_rest_margin(t, par, hdr, smp)
     return rest_margin(t, y, par, disc, hdr, smp)
 
 
 @jit
 def start_from_rest(t, y, par, disc, hdr, smp, met, log, cnt):
-    """Uplift test from theta = theta' = 0 (d = 0: away from the wall only)."""
-    if par[P_HOGAN] != 0.0:
+    """Uplift test from theta = theta' = 0 (d = 0 or a small gap: away from
+    the wall only)."""
+    if one_sided(par):
         ag, av = ground(t, hdr, smp)
         G = par[P_G] + av
         if G > 0.0 and par[P_WALL_SIDE] * ag <= G * math.tan(par[P_ALPHA]) * (1.0 + UPLIFT_RTOL):
@@ -178,24 +247,28 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     check_energy(pre * pre, post * post, met)
     track_rotation(y[0], met)
     log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, y[0], disc[D_PIVOT])
-    if is_chatter(t, post, opt, met):
+    if is_chatter(t, post, opt, met) or \
+            rigid_bounce_unresolved(par[P_E_W], post, par, opt):
         settle_on_wall(t, y, par, disc, hdr, smp, log, cnt)
     return RUNNING
 
 
 @jit
 def hogan_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
-    """d = 0: ground and wall impacts coincide at theta = 0; pivot kept on
-    the far corner, theta'+ = -r theta'- with r = e_w (Hogan 1992)."""
+    """d = 0 or a small gap: ground and wall impacts coincide at theta = 0;
+    pivot kept on the far corner, theta'+ = -r theta'- (Hogan 1992; r of
+    :func:`hogan_r`)."""
     pre = y[1]
-    post = -par[P_E_W] * pre
+    r = hogan_r(par)
+    post = -r * pre
     y[0] = 0.0
     y[1] = post
     met[M_IMPACTS] += 1
     met[M_WALL_IMPACTS] += 1
     check_energy(pre * pre, post * post, met)
     log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, 0.0, disc[D_PIVOT])
-    if is_chatter(t, post, opt, met):
+    if is_chatter(t, post, opt, met) or \
+            rigid_bounce_unresolved(r, post, par, opt):
         y[1] = 0.0
         st = start_from_rest(t, y, par, disc, hdr, smp, met, log, cnt)
         if disc[D_MODE] == MODE_REST:
@@ -212,7 +285,10 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             return RUNNING
         return start_from_rest(t, y, par, disc, hdr, smp, met, log, cnt)
     if k == K_IMPACT:
-        if par[P_HOGAN] != 0.0:
+        # on the near corner (a start inside a small gap) the first ground
+        # impact is Housner's, to the far corner
+        if par[P_HOGAN] != 0.0 or (one_sided(par) and
+                                   disc[D_PIVOT] != par[P_WALL_SIDE]):
             return hogan_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
         return ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
                              par[P_E])
@@ -249,9 +325,9 @@ def fold_peaks(y, par, disc, met):
     a = par[P_ALPHA]
     w = par[P_WALL_SIDE]
     tw = par[P_THETA_W]
-    hogan = par[P_HOGAN] != 0.0
+    hogan = one_sided(par)
     ew2 = par[P_E_W] * par[P_E_W]
-    e2 = ew2 if hogan else par[P_E] * par[P_E]
+    e2 = hogan_r(par) ** 2 if hogan else par[P_E] * par[P_E]
     s = disc[D_PIVOT]
     E = free_energy(y, s, par)
     if s * y[1] > 0.0:
@@ -289,6 +365,8 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
             t >= excitation_end(hdr):
         s = disc[D_PIVOT]
         a = par[P_ALPHA]
+        if one_sided(par) and s == par[P_WALL_SIDE]:
+            return RUNNING      # a start inside a small gap: until its impact
         if free_energy(y, s, par) < 1.0 - math.cos(a):
             if s * y[0] < a:
                 fold_peaks(y, par, disc, met)

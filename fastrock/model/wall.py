@@ -36,7 +36,8 @@ class Wall:
         small-gap limit of the d > 0 model is Hogan's map with r = e^2 e_w
         (a ground impact, a wall impact and a second ground impact in quick
         succession): pass ``restitution = e**2 * e_w`` at d = 0 for a model
-        continuous in d.
+        continuous in d.  Gaps with theta_w < 1e-7 rad run that limit
+        (docs: guide/models/wall).
     friction : float
         Coulomb coefficient mu_w of the wall contact (static = kinetic),
         >= 0.  Default 0 (frictionless).  A positive value needs the contact
