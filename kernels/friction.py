@@ -66,7 +66,8 @@ from .hybrid import (book_time, check_energy, final_status, init_metrics,
 from .layout import (D_AUX, D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_IMPACT, EV_REST, EV_SLIP, EV_STICK, EV_UPLIFT, FLIGHT,
                      MODE_REST, MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK,
-                     M_IMPACTS, M_MAX_SLIDE, M_N_EVENTS, M_N_STICK_SLIP,
+                     M_IMPACTS, M_MAX_SLIDE, M_MAX_THETA_NEG, M_MAX_THETA_POS,
+                     M_N_EVENTS, M_N_STICK_SLIP,
                      M_RESIDUAL_SLIDE, M_T_EXC_END, M_T_FINAL, M_T_LAST_IMPACT,
                      M_T_UPLIFT, N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T,
                      O_T0, O_T_END, RUNNING, SAFE_BOUNDED, S_ON)
@@ -728,10 +729,11 @@ def decide(t, y, par, disc, hdr, opt, met):
       closed form (``finish_slide``) with the integrated run's status and
       metrics.  Returns SAFE_BOUNDED as the marker ``run`` completes.
     * ROCK (no jam) after the excitation, below the overturning barrier and
-      sticking for good (``sticks_for_good``): the rigid block's decision
-      (``bounded_after_excitation``): SAFE_BOUNDED, max rotations exact by
-      the next two peaks, slip metrics final (no slip is left); impacts and
-      the time columns count up to the decision, as the rigid kernel's.
+      sticking for good (``sticks_for_good``), once the next two peaks
+      (``bounded_after_excitation``; later ones are lower) stay within the
+      max rotations reached so far: SAFE_BOUNDED with the max rotations
+      final and the slip metrics final (no slip is left).  Impacts and the
+      time columns count up to the decision, as in the rigid kernel.
     """
     if opt[O_EARLY_EXIT] == 0.0 or t < met[M_T_EXC_END] or hdr[S_ON] != 0.0:
         return RUNNING
@@ -745,11 +747,20 @@ def decide(t, y, par, disc, hdr, opt, met):
         return RUNNING
     safe, pk1, pk2 = bounded_after_excitation(y[0], y[1], s, par[P_ALPHA],
                                               par[P_P], par[P_E])
-    if not safe:
-        return RUNNING
-    track_rotation(pk1, met)
-    track_rotation(pk2, met)
-    return SAFE_BOUNDED
+    if safe and within_max(pk1, met) and within_max(pk2, met):
+        return SAFE_BOUNDED
+    return RUNNING
+
+
+@jit
+def within_max(peak, met):
+    """The signed rotation ``peak`` does not exceed the largest one reached
+    on its side.  Then the peak leaves every max-rotation metric as it is,
+    whether or not it comes before t_end.  A later peak could be cut off by
+    t_end and not be reached at all."""
+    if peak >= 0.0:
+        return peak <= met[M_MAX_THETA_POS]
+    return -peak <= met[M_MAX_THETA_NEG]
 
 
 @jit
