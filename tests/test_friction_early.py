@@ -7,10 +7,9 @@ friction and the impact maps dissipate).  With ``early_exit`` the kernel decides
   in closed form with the integrated run's status and every metric;
 * rocking without slip (ROCK) below the overturning barrier, where stick and contact provably
   hold on every state the energy still allows and no impact can slip (``sticks_for_good``): the
-  rest is Housner free rocking.  Once its next two peaks (closed form) stay within the max
-  rotations reached so far, the run ends safe:bounded with the max rotations and the slip
-  metrics final.  The peaks are not added: a short run can end before they come (the random
-  scenes below have t_after down to 0.5 s).
+  rest is Housner free rocking: safe:bounded, the next two peaks in closed form counted when
+  they come before t_end (``peak_times``, elliptic integrals; the random scenes below have
+  t_after down to 0.5 s), the slip metrics final.
 
 Oracle: the same runs integrated to the end (``early_exit=False``), at a tight tolerance.
 """
@@ -191,3 +190,33 @@ def test_early_decisions_equal_full_runs_on_random_scenes():
         np.testing.assert_allclose(early.loc[rest, c], full.loc[rest, c], rtol=1e-9, atol=1e-11,
                                    err_msg=c)
     assert bounded.sum() > 30 and (early["nfev"] < full["nfev"]).sum() > 60
+
+
+def test_peak_times_match_quadrature():
+    """peak_times against the integral of dtheta / |theta'| of free rocking, through an impact."""
+    from scipy.integrate import quad
+    alpha, p, e = 0.3, 2.5, 0.8
+
+    def swing(E, u0, u1):
+        """Time from u0 to u1 (0 <= u < alpha, same direction) at energy E (units g R)."""
+        f = lambda u: 1.0 / (p * math.sqrt(max(2 * (E + math.cos(alpha) - math.cos(alpha - u)),
+                                                 1e-300)))
+        # the 1/sqrt singularity at the peak: quad reaches about 1e-9
+        return quad(f, min(u0, u1), max(u0, u1), epsabs=0, epsrel=1e-10, limit=400)[0]
+
+    def u_peak(E):
+        return alpha - math.acos(math.cos(alpha) + E)
+
+    for theta, w in [(0.05, 0.6), (0.1, -0.4), (0.0, -0.5), (0.2, 0.05), (0.12, 0.0)]:
+        E = 0.5 * w * w / p ** 2 + math.cos(alpha - theta) - math.cos(alpha)
+        if w > 0:
+            t1 = swing(E, theta, u_peak(E))
+            e1 = E
+        else:
+            e1 = e * e * E
+            t1 = swing(E, theta, 0.0) + swing(e1, 0.0, u_peak(e1))
+        t2 = t1 + swing(e1, u_peak(e1), 0.0) + swing(e * e * e1, 0.0, u_peak(e * e * e1))
+        for s in (1, -1):
+            r1, r2 = K.peak_times(s * theta, s * w, s, alpha, p, e)
+            assert r1 == pytest.approx(t1, rel=1e-7, abs=1e-12), (theta, w)
+            assert r2 == pytest.approx(t2, rel=1e-7), (theta, w)
