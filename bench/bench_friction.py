@@ -101,19 +101,24 @@ def inf_vs_none(repeats=5, n=40):
 # ------------------------------------------------------------------ 2. inert friction
 def kernel_inputs(friction, cells):
     """The arrays overturning_spectrum hands to the sweep kernel, for (A, F) cells."""
-    spec = registry.select(BLOCK, friction=friction)
     A = np.array([c[0] for c in cells])
     F = np.array([c[1] for c in cells])
+    return pulse_inputs(friction, A, F, np.ones(A.size), False, BLOCK, Solver())
+
+
+def pulse_inputs(friction, A, F, S, early_exit, block, solver):
+    """Sweep-kernel inputs for one-sine cells (A, F, sign S), as overturning_spectrum builds them."""
+    spec = registry.select(block, friction=friction)
     n = A.size
-    omega = F * BLOCK.p
+    omega = F * block.p
     dur = 2 * np.pi / omega
     HDR = np.zeros((n, L.N_EXC))
     HDR[:, L.X_KIND] = L.EXC_ONE_SINE
-    HDR[:, L.X_AMP] = A * BLOCK.g * math.tan(BLOCK.alpha)
+    HDR[:, L.X_AMP] = A * block.g * math.tan(block.alpha)
     HDR[:, L.X_OMEGA] = omega
-    HDR[:, L.X_SIGN] = 1.0
+    HDR[:, L.X_SIGN] = S
     HDR[:, L.X_DUR] = dur
-    OPT = np.tile(Solver().options(0.0, False), (n, 1))
+    OPT = np.tile(solver.options(0.0, early_exit), (n, 1))
     OPT[:, L.O_T_END] = dur + T_AFTER
     PAR = np.tile(spec.par, (n, 1))
     return spec, (np.zeros((n, spec.n_state)), PAR, HDR, np.zeros(1), OPT)
@@ -221,21 +226,7 @@ def early_grid(n=24):
 
 
 def early_inputs(friction, A, F, S, early_exit, block=EARLY_BLOCK):
-    """Sweep-kernel inputs for one-sine cells (A, F, sign S), as overturning_spectrum builds them."""
-    spec = registry.select(block, friction=friction)
-    n = A.size
-    omega = F * block.p
-    dur = 2 * np.pi / omega
-    HDR = np.zeros((n, L.N_EXC))
-    HDR[:, L.X_KIND] = L.EXC_ONE_SINE
-    HDR[:, L.X_AMP] = A * block.g * math.tan(block.alpha)
-    HDR[:, L.X_OMEGA] = omega
-    HDR[:, L.X_SIGN] = S
-    HDR[:, L.X_DUR] = dur
-    OPT = np.tile(Solver(rtol=E_RTOL, atol=E_ATOL).options(0.0, early_exit), (n, 1))
-    OPT[:, L.O_T_END] = dur + T_AFTER
-    PAR = np.tile(spec.par, (n, 1))
-    return spec, (np.zeros((n, spec.n_state)), PAR, HDR, np.zeros(1), OPT)
+    return pulse_inputs(friction, A, F, S, early_exit, block, Solver(rtol=E_RTOL, atol=E_ATOL))
 
 
 def outcomes(st, met, friction):
