@@ -7,6 +7,7 @@ Usage::
     pytest bench/bench_friction.py             # pytest-benchmark table + the 5% check
     python bench/bench_friction.py             # plain report of the ratios
     python bench/bench_friction.py --quick     # fewer repeats, 30x30 instead of 50x50
+    python bench/bench_friction.py --early     # only 4., the early decisions against full runs and SciPy
 
 Measured on a rectangular block b = 0.25 m, h = 1 m (b/h = 0.25, alpha = 0.245, p = 2.67 rad/s),
 one-sine pulses a_p/(g tan alpha) in [1, 6] x omega_p/p in [0.5, 10], t_after 10 s, rtol 1e-8:
@@ -18,12 +19,14 @@ one-sine pulses a_p/(g tan alpha) in [1, 6] x omega_p/p in [0.5, 10], t_after 10
    through ``overturning_spectrum``.  Target: within 5%.
 2. Inert but finite friction, mu = 10 (nothing slides: checked per cell, stick_slip == 0 and
    max_slide == 0): ``rigid_friction_sweep`` against ``rigid_sweep`` on the same cells, one
-   thread, early exit off in both (the friction kernel has no early decision, so with it on the
-   rigid kernel would stop earlier and the ratio would mix in that difference; that front-end
-   ratio is printed too).  This is the price of the 4-state kernel (4 states in DP5, 6 event
+   thread, early exit off in both (the two kernels' early decisions reach different states, so
+   with them on the ratio would mix in that difference; that front-end ratio is printed too).  This is the price of the 4-state kernel (4 states in DP5, 6 event
    functions including mu_s N - |F| and N, the mode logic).
 3. A 50 x 50 friction spectrum (mu_s = 0.4 > b/h: rocking and slide-rocking; and mu_s = 0.2 <
    b/h: sliding), wall time on all threads, with the rigid 50 x 50 for reference.
+4. Early decisions (issue #15): per-run CPU time with and without them on a 24 x 24 x 2 pulse
+   grid, outcomes compared cell by cell, and the ratio to a SciPy reference (see
+   ``early_decisions``).
 
 Timings are minima over interleaved repeats; the load average is printed.
 """
@@ -98,19 +101,24 @@ def inf_vs_none(repeats=5, n=40):
 # ------------------------------------------------------------------ 2. inert friction
 def kernel_inputs(friction, cells):
     """The arrays overturning_spectrum hands to the sweep kernel, for (A, F) cells."""
-    spec = registry.select(BLOCK, friction=friction)
     A = np.array([c[0] for c in cells])
     F = np.array([c[1] for c in cells])
+    return pulse_inputs(friction, A, F, np.ones(A.size), False, BLOCK, Solver())
+
+
+def pulse_inputs(friction, A, F, S, early_exit, block, solver):
+    """Sweep-kernel inputs for one-sine cells (A, F, sign S), as overturning_spectrum builds them."""
+    spec = registry.select(block, friction=friction)
     n = A.size
-    omega = F * BLOCK.p
+    omega = F * block.p
     dur = 2 * np.pi / omega
     HDR = np.zeros((n, L.N_EXC))
     HDR[:, L.X_KIND] = L.EXC_ONE_SINE
-    HDR[:, L.X_AMP] = A * BLOCK.g * math.tan(BLOCK.alpha)
+    HDR[:, L.X_AMP] = A * block.g * math.tan(block.alpha)
     HDR[:, L.X_OMEGA] = omega
-    HDR[:, L.X_SIGN] = 1.0
+    HDR[:, L.X_SIGN] = S
     HDR[:, L.X_DUR] = dur
-    OPT = np.tile(Solver().options(0.0, False), (n, 1))
+    OPT = np.tile(solver.options(0.0, early_exit), (n, 1))
     OPT[:, L.O_T_END] = dur + T_AFTER
     PAR = np.tile(spec.par, (n, 1))
     return spec, (np.zeros((n, spec.n_state)), PAR, HDR, np.zeros(1), OPT)
@@ -188,14 +196,176 @@ def report(quick=False):
           f"{c['inert'] / c['rigid']:.3f};  nfev ratio {c['nfev_inert'] / c['nfev_rigid']:.3f}; "
           f"same statuses {c['same_status']}; max |peak ratio - 1| {c['max_peak_rel']:.1e}")
     t0, t1 = inert_front_end(max(2, rep - 2), 20 if quick else 30)
-    print(f"   front end, early exit on (the rigid kernel's early decision; the friction kernel has "
-          f"none): {t0:.3f} s vs {t1:.3f} s, ratio {t1 / t0:.2f}")
+    print(f"   front end, early exit on (each kernel's own early decisions): {t0:.3f} s vs {t1:.3f} s, "
+          f"ratio {t1 / t0:.2f}")
     s = spectra_50(n50)
     base = s["none"][0]
     print(f"3. {n50}x{n50} spectra (all threads, wall time, early exit on):")
     for k, (t, df) in s.items():
         counts = df["outcome"].value_counts().to_dict()
         print(f"   {k:<6} {t:7.2f} s  ({n50 * n50 / t:7.0f} runs/s)  ratio to rigid {t / base:5.2f}  {counts}")
+
+
+# ------------------------------------------------------------------ 4. early decisions (issue #15)
+# The rigid block of bench/ratios.py (alpha 0.25, p 2: b/h 0.255), one-sine pulses of both signs
+# on a 24 x 24 grid a_p/(g tan alpha) in [1, 6] x omega_p/p in [0.5, 10], 10 s after the pulse,
+# rtol 1e-6 (atol 1e-8), the SciPy baseline's tolerances.  Three frictions: mu 1 (rocks without
+# ever slipping on the cells kept: the SciPy reference is then ratios.scipy_rigid, Housner's
+# model), mu 0.15 < b/h (slides only: the SciPy reference is scipy_slide below), mu 0.3 (rocks
+# and slide-rocks: no SciPy reference of that model here, early against full only).
+EARLY_BLOCK = fr.RigidBlock(alpha=0.25, p=2.0)
+EARLY_CASES = {"stick mu=1.0": Friction(1.0), "slide mu=0.15": Friction(0.15),
+               "slide-rock mu=0.3": Friction(0.3)}
+E_RTOL, E_ATOL = 1e-6, 1e-8
+
+
+def early_grid(n=24):
+    a, f = np.linspace(1.0, 6.0, n), np.linspace(0.5, 10.0, n)
+    S, F, A = np.meshgrid([1.0, -1.0], f, a, indexing="ij")
+    return A.ravel(), F.ravel(), S.ravel()
+
+
+def early_inputs(friction, A, F, S, early_exit, block=EARLY_BLOCK):
+    return pulse_inputs(friction, A, F, S, early_exit, block, Solver(rtol=E_RTOL, atol=E_ATOL))
+
+
+def outcomes(st, met, friction):
+    """The front end's outcome: safe with |residual slide| above the tolerance is 'slide'."""
+    from fastrock.running.outcomes import outcome_of
+    out = np.array([outcome_of(c) for c in st], dtype=object)
+    slid = (out == "safe") & (np.abs(met[:, L.M_RESIDUAL_SLIDE]) > friction.slide_tolerance)
+    out[slid] = "slide"
+    return out
+
+
+def scipy_slide(mu_s, mu_k, g, a_p, omega, sign, rtol=E_RTOL, atol=E_ATOL, t_after=T_AFTER,
+                tol=1e-3):
+    """Event-driven flat sliding with ``solve_ivp`` (RK45), mu_s < b/h so the block never rocks
+    (physics.md 4.3): rest until |a_g| > mu_s g, then d'' = -a_g - mu_k sigma g with sigma =
+    -sgn(a_g) until d' = 0, where it rests if |a_g| <= mu_s g and else slips the other way; the
+    pulse end is a breakpoint.  Returns (outcome, residual slip, nfev)."""
+    from scipy.integrate import solve_ivp
+    from ratios import _uplift_time
+    T = 2 * math.pi / omega
+    t_end = T + t_after
+    amp = sign * a_p
+
+    def ag(t):
+        return amp * math.sin(omega * t) if t <= T else 0.0
+
+    t, d, v, sig, sliding, nfev = 0.0, 0.0, 0.0, 0.0, False, 0
+
+    def rhs(t, y):
+        return [y[1], -ag(t) - mu_k * sig * g]
+
+    def stick(t, y):
+        return sig * y[1]
+    stick.terminal, stick.direction = True, -1
+    while True:
+        if not sliding:
+            tu = _uplift_time(t, T, omega, a_p, mu_s * g) if t <= T else math.inf
+            if not math.isfinite(tu):
+                break
+            t, v, sliding = tu, 0.0, True
+            sig = -1.0 if ag(t) > 0.0 else 1.0
+        t_stop = T if t < T else t_end
+        sol = solve_ivp(rhs, (t, t_stop), [d, v], method="RK45", rtol=rtol, atol=atol, events=stick)
+        nfev += sol.nfev
+        if sol.status == 1:
+            t = float(sol.t_events[0][-1])
+            d, v = float(sol.y_events[0][-1][0]), 0.0
+            a = ag(t)
+            if abs(a) > mu_s * g:
+                sig = -1.0 if a > 0.0 else 1.0
+            else:
+                sliding = False
+            continue
+        if sol.status != 0:
+            return "failed", d, nfev
+        d, v, t = float(sol.y[0, -1]), float(sol.y[1, -1]), t_stop
+        if t >= t_end:
+            break
+    return ("slide" if abs(d) > tol else "safe"), d, nfev
+
+
+def scipy_reference(name, friction, a, f, s, block=EARLY_BLOCK):
+    """(outcome, residual slip or NaN) of one cell by the SciPy reference of the case."""
+    a_p = a * block.g * math.tan(block.alpha)
+    if name.startswith("stick"):
+        from ratios import scipy_rigid
+        out = scipy_rigid(block.alpha, block.p, block.e, block.g, a_p, f * block.p, s,
+                          rtol=E_RTOL, atol=E_ATOL, t_after=T_AFTER)
+        return out[0], 0.0
+    out = scipy_slide(friction.mu_s, friction.mu_k, block.g, a_p, f * block.p, s)
+    return out[0], out[1]
+
+
+def early_decisions(n=24, n_scipy=40, repeats=3, scipy_repeats=2):
+    """Per-run CPU time (1 thread) with and without early decisions on the 2 n^2 grid, outcomes
+    compared cell by cell, and the ratio to SciPy on n_scipy cells drawn from it (seed 0)."""
+    A, F, S = early_grid(n)
+    res = {}
+    for name, fric in EARLY_CASES.items():
+        spec, i_e = early_inputs(fric, A, F, S, True)
+        _, i_f = early_inputs(fric, A, F, S, False)
+        st_e, met_e = direct_sweep(spec, i_e)
+        st_f, met_f = direct_sweep(spec, i_f)
+        out_e, out_f = outcomes(st_e, met_e, fric), outcomes(st_f, met_f, fric)
+        with one_thread():
+            t_e, t_f = best_of([lambda: direct_sweep(spec, i_e), lambda: direct_sweep(spec, i_f)],
+                               repeats, time.process_time)
+        r = dict(cells=A.size, same=int((out_e == out_f).sum()), per_early=t_e / A.size,
+                 per_full=t_f / A.size, nfev_early=met_e[:, L.M_NFEV].mean(),
+                 nfev_full=met_f[:, L.M_NFEV].mean(),
+                 bounded=int((st_e == L.SAFE_BOUNDED).sum()),
+                 drot=float(np.abs(met_e[:, L.M_MAX_ABS_THETA] - met_f[:, L.M_MAX_ABS_THETA]).max()),
+                 dres=float(np.abs(met_e[:, L.M_RESIDUAL_SLIDE] - met_f[:, L.M_RESIDUAL_SLIDE]).max()),
+                 outcomes={k: int(v) for k, v in zip(*np.unique(out_f, return_counts=True))})
+        if not name.startswith("slide-rock"):
+            idx = np.sort(np.random.default_rng(0).choice(A.size, n_scipy, replace=False))
+            if name.startswith("stick"):     # Housner's model holds where the block never slips
+                idx = idx[(met_f[idx, L.M_N_STICK_SLIP] == 0) & (met_f[idx, L.M_MAX_SLIDE] == 0)]
+            sp_c = np.full(idx.size, np.inf)
+            sp = []
+            for j, i in enumerate(idx):
+                for _ in range(scipy_repeats):
+                    c0 = time.process_time()
+                    o = scipy_reference(name, fric, A[i], F[i], S[i])
+                    sp_c[j] = min(sp_c[j], time.process_time() - c0)
+                sp.append(o)
+            sp_out = np.array([o[0] for o in sp], dtype=object)
+            sp_res = np.array([o[1] for o in sp])
+            reps = 20
+            sub = [early_inputs(fric, np.tile(A[idx], reps), np.tile(F[idx], reps),
+                                np.tile(S[idx], reps), e)[1] for e in (True, False)]
+            with one_thread():
+                s_e, s_f = best_of([lambda: direct_sweep(spec, sub[0]),
+                                    lambda: direct_sweep(spec, sub[1])], repeats, time.process_time)
+            per_e, per_f = s_e / (reps * idx.size), s_f / (reps * idx.size)
+            r.update(scipy_cells=int(idx.size), scipy_per=float(sp_c.mean()),
+                     scipy_same=int((sp_out == out_e[idx]).sum()),
+                     scipy_dres=float(np.abs(sp_res - met_e[idx, L.M_RESIDUAL_SLIDE]).max()),
+                     sub_early=per_e, sub_full=per_f, ratio_early=sp_c.mean() / per_e,
+                     ratio_full=sp_c.mean() / per_f)
+        res[name] = r
+    return res
+
+
+def early_report(n=24, n_scipy=40, repeats=3):
+    print(f"4. early decisions (issue #15): alpha 0.25 p 2, one-sine both signs {n}x{n}x2, a_p/(g tan a) "
+          f"[1, 6] x w_p/p [0.5, 10], t_after {T_AFTER} s, rtol {E_RTOL:g} atol {E_ATOL:g}; 1 thread CPU time")
+    for name, r in early_decisions(n, n_scipy, repeats).items():
+        print(f"   {name:<18} outcomes {r['outcomes']}; early vs full: identical {r['same']}/{r['cells']}, "
+              f"{r['bounded']} safe:bounded, max |d max_rotation| {r['drot']:.1e} rad, "
+              f"max |d residual| {r['dres']:.1e} m")
+        print(f"   {'':<18} per run {1e6 * r['per_early']:.1f} us early, {1e6 * r['per_full']:.1f} us full "
+              f"({r['per_full'] / r['per_early']:.2f}x); mean nfev {r['nfev_early']:.0f} vs {r['nfev_full']:.0f}")
+        if "scipy_per" in r:
+            print(f"   {'':<18} SciPy on {r['scipy_cells']} cells: {1e3 * r['scipy_per']:.2f} ms per run, "
+                  f"identical outcomes {r['scipy_same']}/{r['scipy_cells']}, max |d residual| "
+                  f"{r['scipy_dres']:.1e} m; fastrock there {1e6 * r['sub_early']:.1f} us early / "
+                  f"{1e6 * r['sub_full']:.1f} us full: ratio SciPy/fastrock {r['ratio_early']:,.0f}x early, "
+                  f"{r['ratio_full']:,.0f}x full")
 
 
 # ---------------------------------------------------------------- pytest-benchmark
@@ -247,7 +417,24 @@ def test_inf_friction_scene_never_imports_the_friction_kernel():
     assert out.strip() == "False"
 
 
+def test_early_decisions_equal_outcomes():
+    r = early_decisions(n=12, n_scipy=10, repeats=1)
+    for name, c in r.items():
+        print(f"\n{name}: identical {c['same']}/{c['cells']}, per run {1e6 * c['per_early']:.1f} us early "
+              f"vs {1e6 * c['per_full']:.1f} us full" + (f", SciPy {c['ratio_early']:,.0f}x" if "ratio_early" in c
+                                                       else ""))
+        assert c["same"] == c["cells"]
+        assert c.get("scipy_same", 0) == c.get("scipy_cells", 0)
+
+
 if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--quick", action="store_true", help="fewer repeats, 30x30 instead of 50x50")
-    report(ap.parse_args().quick)
+    ap.add_argument("--early", action="store_true", help="only section 4, the early decisions")
+    args = ap.parse_args()
+    if args.early:
+        print(f"fastrock {fr.__version__}, {os.cpu_count()} CPUs, load average {os.getloadavg()}")
+        early_report(12 if args.quick else 24, 10 if args.quick else 40, 2 if args.quick else 3)
+    else:
+        report(args.quick)
+        early_report(12 if args.quick else 24, 10 if args.quick else 40, 2 if args.quick else 3)

@@ -66,10 +66,13 @@ from .hybrid import (book_time, check_energy, final_status, init_metrics,
 from .layout import (D_AUX, D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_IMPACT, EV_REST, EV_SLIP, EV_STICK, EV_UPLIFT, FLIGHT,
                      MODE_REST, MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK,
-                     M_IMPACTS, M_MAX_SLIDE, M_N_STICK_SLIP, M_RESIDUAL_SLIDE,
-                     M_T_LAST_IMPACT, M_T_UPLIFT, N_DISC, O_EPS_OMEGA, O_EPS_T,
-                     O_T0, RUNNING)
-from .rigid import (P_ALPHA, P_E, P_G, P_THETA_OVER, UPLIFT_RTOL, initial_pivot,
+                     M_IMPACTS, M_MAX_SLIDE, M_MAX_THETA_NEG, M_MAX_THETA_POS,
+                     M_N_EVENTS, M_N_STICK_SLIP,
+                     M_RESIDUAL_SLIDE, M_T_EXC_END, M_T_FINAL, M_T_LAST_IMPACT,
+                     M_T_UPLIFT, N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T,
+                     O_T0, O_T_END, RUNNING, SAFE_BOUNDED, S_ON)
+from .rigid import (P_ALPHA, P_E, P_G, P_P, P_THETA_OVER, UPLIFT_RTOL,
+                    bounded_after_excitation, carlson_rf, initial_pivot,
                     overturned, passed_alpha, track_rotation)
 
 from .layout import N_PAR_FRICTION as N_PAR, Q_B, Q_H, Q_IG, Q_MU_K, Q_MU_S  # noqa: E402,F401
@@ -680,6 +683,164 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     return impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
 
 
+# ----------------------------------------------------- early decisions
+# Once the excitation is over (level ground) the ground frame is inertial,
+# Coulomb friction and every impact map dissipate, and the normal force does
+# no work: the mechanical energy can only fall.  Two states are then decided
+# exactly, with every metric either completed or final (``decide``).
+
+
+@jit
+def sticks_for_good(theta, w, s, par):
+    """ROCK after the excitation: True when the rest of the motion is
+    provably Housner free rocking with theta'+ = e theta'- (no slip, no
+    lift-off, ever).  With E = i_0 w^2 / 2 + g (Y - h) (per unit mass, zero
+    at rest) below the barrier the block stays in 0 <= s theta < alpha,
+    where h <= Y <= R and |X| <= b, and w^2 <= 2 E / i_0 from now on.  Stick
+    (free: theta'' = g X / i_0) has F = X (g Y / i_0 - w^2) and N = g (i_G +
+    Y^2) / i_0 - Y w^2, so |F| <= b (g R / i_0 + w^2) and N >= g (i_G + h^2)
+    / i_0 - R w^2 bound them on every state still reachable.  An impact
+    without slip velocity (post = e pre) needs the tangential impulse
+    h (1 - e) |pre| and gets the normal one b (1 + e) |pre| (corner_impact):
+    it sticks for any speed when h (1 - e) < mu_s b (1 + e)."""
+    b = par[Q_B]
+    h = par[Q_H]
+    iG = par[Q_IG]
+    g = par[P_G]
+    mu_s = par[Q_MU_S]
+    e = par[P_E]
+    if not (0.0 <= e <= 1.0 and h * (1.0 - e) < mu_s * b * (1.0 + e)):
+        return False
+    _X, Y = offsets(theta, s, par)
+    i0 = iG + b * b + h * h
+    R = math.sqrt(b * b + h * h)
+    w2 = w * w + 2.0 * g * (Y - h) / i0
+    n_min = g * (iG + h * h) / i0 - R * w2
+    f_max = b * (g * R / i0 + w2)
+    return n_min > 0.0 and mu_s * n_min > f_max
+
+
+@jit
+def decide(t, y, par, disc, hdr, opt, met):
+    """Early decision at an accepted step end (``early_exit``, level ground):
+
+    * SLIDE after the excitation: d'' = -mu_k g sigma until stick, then rest
+      for good (start_from_flat with a_g = 0), so the run is completed in
+      closed form (``finish_slide``) with the integrated run's status and
+      metrics.  Returns SAFE_BOUNDED as the marker ``run`` completes.
+    * ROCK (no jam) after the excitation, below the overturning barrier and
+      sticking for good (``sticks_for_good``): SAFE_BOUNDED, with the max
+      rotations completed and the slip metrics final (no slip is left).
+      The next two peaks (``bounded_after_excitation``; later ones are
+      lower) count if they come before t_end (``peak_times``).  A peak
+      that would come after t_end and exceed the max so far is not
+      decided: the state at t_end would count instead.  Impacts and the
+      time columns count up to the decision, as in the rigid kernel.
+    """
+    if opt[O_EARLY_EXIT] == 0.0 or t < met[M_T_EXC_END] or hdr[S_ON] != 0.0:
+        return RUNNING
+    mode = disc[D_MODE]
+    if mode == MODE_SLIDE:
+        return SAFE_BOUNDED
+    if mode != MODE_ROCK or disc[D_AUX] != 0:
+        return RUNNING
+    s = disc[D_PIVOT]
+    if not sticks_for_good(y[0], y[1], s, par):
+        return RUNNING
+    safe, pk1, pk2 = bounded_after_excitation(y[0], y[1], s, par[P_ALPHA],
+                                              par[P_P], par[P_E])
+    if not safe:
+        return RUNNING
+    t1, t2 = peak_times(y[0], y[1], s, par[P_ALPHA], par[P_P], par[P_E])
+    t_end = opt[O_T_END]
+    if not (within_max(pk1, met) or t + t1 <= t_end):
+        return RUNNING
+    if not (within_max(pk2, met) or t + t2 <= t_end):
+        return RUNNING
+    if t + t1 <= t_end:
+        track_rotation(pk1, met)
+    if t + t2 <= t_end:
+        track_rotation(pk2, met)
+    return SAFE_BOUNDED
+
+
+@jit
+def within_max(peak, met):
+    """The signed rotation ``peak`` does not exceed the largest one reached
+    on its side, so it changes no max-rotation metric."""
+    if peak >= 0.0:
+        return peak <= met[M_MAX_THETA_POS]
+    return -peak <= met[M_MAX_THETA_NEG]
+
+
+@jit
+def swing_time(phi, k2, p):
+    """Time of free rocking from phi = (alpha - s theta) / 2 out to the peak
+    sin(phi_pk) = k, k^2 = (1 - cos alpha - E) / 2 > 0 (E as in
+    rigid.free_energy, below the barrier).  theta'^2 = 4 p^2 (sin^2 phi -
+    k^2) makes it (1/p) int dphi / sqrt(sin^2 phi - k^2) from phi_pk; with
+    cos phi = sqrt(m) cos psi, m = 1 - k^2, that is (1/p) (K(m) -
+    F(pi/2 - psi | m)), and in Carlson's form K(m) = R_F(0, k^2, 1),
+    F = cos(phi) / sqrt(m) R_F((sin^2 phi - k^2) / m, sin^2 phi, 1)."""
+    m = 1.0 - k2
+    sp2 = math.sin(phi) ** 2
+    x = max(sp2 - k2, 0.0) / m
+    return (carlson_rf(0.0, k2, 1.0)
+            - math.cos(phi) / math.sqrt(m) * carlson_rf(x, sp2, 1.0)) / p
+
+
+@jit
+def peak_times(theta, w, s, alpha, p, e):
+    """Times from now to the next two peaks of ``bounded_after_excitation``
+    (free rocking below the barrier, theta'+ = e theta'- at impacts): a
+    swing out to a peak and back to the impact take the same time."""
+    c = 1.0 - math.cos(alpha)
+    E = 0.5 * w * w / (p * p) + math.cos(alpha - s * theta) - math.cos(alpha)
+    e2 = e * e
+    to_peak = swing_time(0.5 * (alpha - s * theta), 0.5 * (c - E), p)
+    if s * w > 0.0:
+        e1 = E
+        t1 = to_peak
+    else:
+        e1 = e2 * E
+        t1 = (swing_time(0.5 * alpha, 0.5 * (c - E), p) - to_peak
+              + swing_time(0.5 * alpha, 0.5 * (c - e1), p))
+    t2 = (t1 + swing_time(0.5 * alpha, 0.5 * (c - e1), p)
+          + swing_time(0.5 * alpha, 0.5 * (c - e2 * e1), p))
+    return t1, t2
+
+
+@jit
+def finish_slide(y, par, disc, opt, met, log, cnt):
+    """Complete a run decided in SLIDE at met[M_T_FINAL] as the integrated
+    run ends it: the stick at t + |d'| / (mu_k g) (book, log, REST) and rest
+    to t_end, or still sliding at t_end.  Returns the final status."""
+    t = met[M_T_FINAL]
+    t_end = opt[O_T_END]
+    sig = disc[D_SLIP_DIR]
+    a = par[Q_MU_K] * par[P_G]
+    v = max(sig * y[3], 0.0)          # slip speed, > 0 up to rounding
+    dt_stop = v / a if a > 0.0 else np.inf
+    if t + dt_stop <= t_end:
+        t_stop = t + dt_stop
+        y[2] += 0.5 * sig * v * dt_stop
+        y[3] = 0.0
+        book_time(t_stop, disc, met)
+        track_slide(y[2], met)
+        met[M_N_STICK_SLIP] += 1
+        met[M_N_EVENTS] += 1
+        log_event(log, cnt, t_stop, EV_STICK, 0.0, 0.0, 0.0, 0)
+        set_mode(disc, MODE_REST, 1, 0)
+    else:
+        dt = t_end - t
+        y[2] += sig * (v - 0.5 * a * dt) * dt
+        y[3] = sig * (v - a * dt)
+    book_time(t_end, disc, met)
+    track_slide(y[2], met)
+    met[M_T_FINAL] = t_end
+    return final_status(disc, met)
+
+
 @jit
 def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     book_time(t, disc, met)
@@ -688,7 +849,7 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
         track_rotation(y[0], met)
     if at_end:
         return final_status(disc, met)
-    return RUNNING
+    return decide(t, y, par, disc, hdr, opt, met)
 
 
 @jit
@@ -725,10 +886,13 @@ def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
         cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_hybrid(rhs, event, transition, static_margin,
-                            after_step, N_EVENTS, y, par, disc, hdr, smp,
-                            opt, t_eval, met, hist_t, hist_y, hist_d, log,
-                            cnt)
+    status = integrate_hybrid(rhs, event, transition, static_margin,
+                              after_step, N_EVENTS, y, par, disc, hdr, smp,
+                              opt, t_eval, met, hist_t, hist_y, hist_d, log,
+                              cnt)
+    if status == SAFE_BOUNDED and disc[D_MODE] == MODE_SLIDE:
+        status = finish_slide(y, par, disc, opt, met, log, cnt)
+    return status
 
 
 @jit
