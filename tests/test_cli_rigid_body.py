@@ -8,7 +8,7 @@ import pytest
 
 import fastrock as fr
 from fastrock.cli import app as cli
-from tests.test_scene_rigid_body import BOX_OBJ, _scene
+from test_scene_rigid_body import BOX_OBJ, _scene  # noqa: E402
 
 WEDGE = [(0.0, 0.0), (1.0, 0.0), (0.2, 2.0)]
 GRID = ["--n-amp", "5", "--amp-min", "0.6", "--amp-max", "4", "--n-freq", "4", "--freq-min", "0.5",
