@@ -66,13 +66,13 @@ from .hybrid import (book_time, check_energy, final_status, init_metrics,
 from .layout import (D_AUX, D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_IMPACT, EV_REST, EV_SLIP, EV_STICK, EV_UPLIFT, FLIGHT,
                      MODE_REST, MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK,
-                     M_IMPACTS, M_MAX_SLIDE, M_MAX_THETA_NEG, M_MAX_THETA_POS,
+                     M_IMPACTS, M_MAX_SLIDE,
                      M_N_EVENTS, M_N_STICK_SLIP,
                      M_RESIDUAL_SLIDE, M_T_EXC_END, M_T_FINAL, M_T_LAST_IMPACT,
                      M_T_UPLIFT, N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_EPS_T,
                      O_T0, O_T_END, RUNNING, SAFE_BOUNDED, S_ON)
 from .rigid import (P_ALPHA, P_E, P_G, P_P, P_THETA_OVER, UPLIFT_RTOL,
-                    bounded_after_excitation, carlson_rf, initial_pivot,
+                    bounded_after_excitation, count_peaks, initial_pivot, peak_times,
                     overturned, passed_alpha, track_rotation)
 
 from .layout import N_PAR_FRICTION as N_PAR, Q_B, Q_H, Q_IG, Q_MU_K, Q_MU_S  # noqa: E402,F401
@@ -752,62 +752,9 @@ def decide(t, y, par, disc, hdr, opt, met):
     if not safe:
         return RUNNING
     t1, t2 = peak_times(y[0], y[1], s, par[P_ALPHA], par[P_P], par[P_E])
-    t_end = opt[O_T_END]
-    if not (within_max(pk1, met) or t + t1 <= t_end):
+    if not count_peaks(t, t1, t2, pk1, pk2, opt[O_T_END], met):
         return RUNNING
-    if not (within_max(pk2, met) or t + t2 <= t_end):
-        return RUNNING
-    if t + t1 <= t_end:
-        track_rotation(pk1, met)
-    if t + t2 <= t_end:
-        track_rotation(pk2, met)
     return SAFE_BOUNDED
-
-
-@jit
-def within_max(peak, met):
-    """The signed rotation ``peak`` does not exceed the largest one reached
-    on its side, so it changes no max-rotation metric."""
-    if peak >= 0.0:
-        return peak <= met[M_MAX_THETA_POS]
-    return -peak <= met[M_MAX_THETA_NEG]
-
-
-@jit
-def swing_time(phi, k2, p):
-    """Time of free rocking from phi = (alpha - s theta) / 2 out to the peak
-    sin(phi_pk) = k, k^2 = (1 - cos alpha - E) / 2 > 0 (E as in
-    rigid.free_energy, below the barrier).  theta'^2 = 4 p^2 (sin^2 phi -
-    k^2) makes it (1/p) int dphi / sqrt(sin^2 phi - k^2) from phi_pk; with
-    cos phi = sqrt(m) cos psi, m = 1 - k^2, that is (1/p) (K(m) -
-    F(pi/2 - psi | m)), and in Carlson's form K(m) = R_F(0, k^2, 1),
-    F = cos(phi) / sqrt(m) R_F((sin^2 phi - k^2) / m, sin^2 phi, 1)."""
-    m = 1.0 - k2
-    sp2 = math.sin(phi) ** 2
-    x = max(sp2 - k2, 0.0) / m
-    return (carlson_rf(0.0, k2, 1.0)
-            - math.cos(phi) / math.sqrt(m) * carlson_rf(x, sp2, 1.0)) / p
-
-
-@jit
-def peak_times(theta, w, s, alpha, p, e):
-    """Times from now to the next two peaks of ``bounded_after_excitation``
-    (free rocking below the barrier, theta'+ = e theta'- at impacts): a
-    swing out to a peak and back to the impact take the same time."""
-    c = 1.0 - math.cos(alpha)
-    E = 0.5 * w * w / (p * p) + math.cos(alpha - s * theta) - math.cos(alpha)
-    e2 = e * e
-    to_peak = swing_time(0.5 * (alpha - s * theta), 0.5 * (c - E), p)
-    if s * w > 0.0:
-        e1 = E
-        t1 = to_peak
-    else:
-        e1 = e2 * E
-        t1 = (swing_time(0.5 * alpha, 0.5 * (c - E), p) - to_peak
-              + swing_time(0.5 * alpha, 0.5 * (c - e1), p))
-    t2 = (t1 + swing_time(0.5 * alpha, 0.5 * (c - e1), p)
-          + swing_time(0.5 * alpha, 0.5 * (c - e2 * e1), p))
-    return t1, t2
 
 
 @jit

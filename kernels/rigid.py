@@ -311,6 +311,94 @@ def carlson_rf(x, y, z):
 
 
 @jit
+def within_max(peak, met):
+    """The signed rotation ``peak`` does not exceed the largest one reached
+    on its side, so it changes no max-rotation metric."""
+    if peak >= 0.0:
+        return peak <= met[M_MAX_THETA_POS]
+    return -peak <= met[M_MAX_THETA_NEG]
+
+
+@jit
+def swing_time(phi, k2, p):
+    """Time of free rocking from phi = (alpha - s theta) / 2 out to the peak
+    sin(phi_pk) = k, k^2 = (1 - cos alpha - E) / 2 > 0 (E as in
+    rigid.free_energy, below the barrier).  theta'^2 = 4 p^2 (sin^2 phi -
+    k^2) makes it (1/p) int dphi / sqrt(sin^2 phi - k^2) from phi_pk; with
+    cos phi = sqrt(m) cos psi, m = 1 - k^2, that is (1/p) (K(m) -
+    F(pi/2 - psi | m)), and in Carlson's form K(m) = R_F(0, k^2, 1),
+    F = cos(phi) / sqrt(m) R_F((sin^2 phi - k^2) / m, sin^2 phi, 1)."""
+    m = 1.0 - k2
+    sp2 = math.sin(phi) ** 2
+    x = max(sp2 - k2, 0.0) / m
+    return (carlson_rf(0.0, k2, 1.0)
+            - math.cos(phi) / math.sqrt(m) * carlson_rf(x, sp2, 1.0)) / p
+
+
+@jit
+def peak_times(theta, w, s, alpha, p, e):
+    """Times from now to the next two peaks of ``bounded_after_excitation``
+    (free rocking below the barrier, theta'+ = e theta'- at impacts): a
+    swing out to a peak and back to the impact take the same time."""
+    c = 1.0 - math.cos(alpha)
+    E = 0.5 * w * w / (p * p) + math.cos(alpha - s * theta) - math.cos(alpha)
+    e2 = e * e
+    to_peak = swing_time(0.5 * (alpha - s * theta), 0.5 * (c - E), p)
+    if s * w > 0.0:
+        e1 = E
+        t1 = to_peak
+    else:
+        e1 = e2 * E
+        t1 = (swing_time(0.5 * alpha, 0.5 * (c - E), p) - to_peak
+              + swing_time(0.5 * alpha, 0.5 * (c - e1), p))
+    t2 = (t1 + swing_time(0.5 * alpha, 0.5 * (c - e1), p)
+          + swing_time(0.5 * alpha, 0.5 * (c - e2 * e1), p))
+    return t1, t2
+
+
+@jit
+def peak_times_sides(theta, w, s, alpha_s, p_s, e_s, alpha_o, p_o, e_o):
+    """``peak_times`` of ``bounded_after_excitation_sides``: each swing
+    with the alpha and p of its side, the energy carried across an impact
+    as there (rho = e^2 p_from^2 / p_to^2, E in units of the side's
+    M g R)."""
+    c_s = 1.0 - math.cos(alpha_s)
+    c_o = 1.0 - math.cos(alpha_o)
+    E = 0.5 * w * w / (p_s * p_s) + math.cos(alpha_s - s * theta) - math.cos(alpha_s)
+    rho_s = (e_s * e_s) * ((p_s * p_s) / (p_o * p_o))
+    rho_o = (e_o * e_o) * ((p_o * p_o) / (p_s * p_s))
+    to_peak = swing_time(0.5 * (alpha_s - s * theta), 0.5 * (c_s - E), p_s)
+    if s * w > 0.0:
+        e2 = rho_s * E
+        t1 = to_peak
+        return t1, (t1 + swing_time(0.5 * alpha_s, 0.5 * (c_s - E), p_s)
+                    + swing_time(0.5 * alpha_o, 0.5 * (c_o - e2), p_o))
+    e1 = rho_s * E
+    e2 = rho_o * e1
+    t1 = (swing_time(0.5 * alpha_s, 0.5 * (c_s - E), p_s) - to_peak
+          + swing_time(0.5 * alpha_o, 0.5 * (c_o - e1), p_o))
+    return t1, (t1 + swing_time(0.5 * alpha_o, 0.5 * (c_o - e1), p_o)
+                + swing_time(0.5 * alpha_s, 0.5 * (c_s - e2), p_s))
+
+
+@jit
+def count_peaks(t, t1, t2, pk1, pk2, t_end, met):
+    """Complete the max rotations of a ``safe:bounded`` decision with the
+    next two peaks (at t + t1, t + t2) that come before t_end; later peaks
+    are lower.  A peak after t_end that would raise the max leaves the run
+    undecided (returns False): the state at t_end would count instead."""
+    if not (within_max(pk1, met) or t + t1 <= t_end):
+        return False
+    if not (within_max(pk2, met) or t + t2 <= t_end):
+        return False
+    if t + t1 <= t_end:
+        track_rotation(pk1, met)
+    if t + t2 <= t_end:
+        track_rotation(pk2, met)
+    return True
+
+
+@jit
 def outward_fall_integral(phi, c, beyond):
     """Antiderivative of 1 / sqrt(c + sin(phi)^2), zero at the reference
     point: phi = 0 (``beyond`` False; needs c > 0) or phi = pi/2 (``beyond``
@@ -411,9 +499,8 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     # free rocking from now on: the exact early decisions
     safe, pk1, pk2 = bounded_after_excitation(theta, w, s, alpha, p, e)
     if safe:
-        track_rotation(pk1, met)
-        track_rotation(pk2, met)
-        return SAFE_BOUNDED
+        t1, t2 = peak_times(theta, w, s, alpha, p, e)
+        return SAFE_BOUNDED if count_peaks(t, t1, t2, pk1, pk2, t_end, met) else RUNNING
     falls, _c, _dt_alpha, dt_over = overturns_after_excitation(
         theta, w, s, alpha, p, theta_over)
     if falls and t + dt_over <= t_end:
@@ -680,9 +767,8 @@ def body_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     safe, pk1, pk2 = bounded_after_excitation_sides(theta, w, s, alpha, p, e,
                                                     alpha_o, p_o, e_o)
     if safe:
-        track_rotation(pk1, met)
-        track_rotation(pk2, met)
-        return SAFE_BOUNDED
+        t1, t2 = peak_times_sides(theta, w, s, alpha, p, e, alpha_o, p_o, e_o)
+        return SAFE_BOUNDED if count_peaks(t, t1, t2, pk1, pk2, t_end, met) else RUNNING
     falls, _c, _dt_alpha, dt_over = overturns_after_excitation(
         theta, w, s, alpha, p, theta_over)
     if falls and t + dt_over <= t_end:
