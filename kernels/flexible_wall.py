@@ -63,8 +63,9 @@ from .flexible import event as flexible_event
 from .flexible import init_state, static_margin  # no static phase: u vibrates in every mode
 from .flexible import rhs as flexible_rhs
 from .flexible import transition as flexible_transition
-from .hybrid import (book_time, check_energy, integrate_hybrid, is_chatter,
-                     log_event, sweep_rows)
+from .hybrid import (book_time, check_energy, elastic_below_resolution,
+                     integrate_hybrid, is_chatter, log_event, sweep_rows)
+from .layout import SMALL_GAP_ANGLE
 from .layout import (D_MODE, D_PIVOT, D_WALL_REST, EV_FLIGHT, EV_WALL_IMPACT,
                      EV_WALL_RELEASE, EV_WALL_REST, FLIGHT, F_ALPHA, F_B,
                      F_G, F_H, F_HB, F_IMPACT, F_MB, F_THETA_OVER, F_WN,
@@ -74,10 +75,9 @@ from .layout import (D_MODE, D_PIVOT, D_WALL_REST, EV_FLIGHT, EV_WALL_IMPACT,
                      M_WALL_IMPACTS, N_DISC, O_EARLY_EXIT, O_T0, RUNNING,
                      SAFE_MOVING)
 from .rigid import track_rotation
-from .wall import SMALL_GAP_ANGLE, elastic_below_resolution
 
 N_EVENTS = 8
-# small-gap limit (SMALL_GAP_ANGLE of .wall, 0.2 um for 2H = 2 m): a
+# small-gap limit (layout.SMALL_GAP_ANGLE, 0.2 um for 2H = 2 m): a
 # closer wall blocks every uplift toward it; the body then only rocks away
 # from the wall, as Hogan's gap-0 block does.  Without it an elastic wall
 # at a gap of nanometres makes the body bounce in that gap thousands of

@@ -120,6 +120,16 @@ def is_chatter(t, post, opt, met):
 
 
 @jit
+def elastic_below_resolution(r, rebound, scale, opt):
+    """An impact elastic at the resolution asked for (restitution r with
+    1 - r^2 <= rtol: it dissipates less than rtol of the energy, so the
+    bounces do not converge) whose rebound energy is below rtol times the
+    energy scale of its model ends as chatter (kernels/wall.py docstring)."""
+    rtol = opt[O_RTOL]
+    return 1.0 - r * r <= rtol and rebound < rtol * scale
+
+
+@jit
 def check_energy(before, after, met):
     """Debug mode only: count an impact whose kinetic energy ``after``
     exceeds ``before`` (every impact map must dissipate)."""

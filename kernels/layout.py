@@ -272,3 +272,7 @@ M_WALL_CAPPED = 31
 # flexible body with friction and free flight (kernels.flexible_flight): the
 # flexible-friction vector with F_LIFT_OFF = LIFT_OFF_FLIGHT (mu_s may be inf)
 N_PAR_FLEXIBLE_FLIGHT = N_PAR_FLEXIBLE_FRICTION
+
+#: Small-gap limit of the wall models: a wall closer than this rotation [rad]
+#: is taken at theta = 0 (kernels/wall.py and kernels/flexible_wall.py)
+SMALL_GAP_ANGLE = 1e-7

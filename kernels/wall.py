@@ -92,8 +92,9 @@ import numpy as np
 
 from .config import jit, jit_generic, jit_parallel
 from .excitation import excitation_end, ground
-from .hybrid import (check_energy, final_status, integrate_hybrid, is_chatter,
-                     log_event, sweep_rows)
+from .hybrid import (check_energy, elastic_below_resolution, final_status,
+                     integrate_hybrid, is_chatter, log_event, sweep_rows)
+from .layout import SMALL_GAP_ANGLE
 from .layout import (D_MODE, D_PIVOT, D_STATIC, D_WALL_REST, EV_FLIGHT,
                      EV_REST, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
                      FLIGHT, LEANING, MODE_REST, MODE_ROCK, MODE_WALL_REST,
@@ -110,11 +111,6 @@ from .rigid import static_margin as rest_margin
 
 N_EVENTS = 6
 K_WALL = 5
-# small-gap limit: a wall closer than this rotation [rad] is taken at
-# theta = 0 (see the module docstring); shared with the flexible wall
-SMALL_GAP_ANGLE = 1e-7
-
-
 @jit
 def one_sided(par):
     """Hogan's one-sided rocking: gap 0, or the small-gap limit."""
@@ -128,16 +124,6 @@ def hogan_r(par):
     if par[P_HOGAN] != 0.0:
         return par[P_E_W]
     return par[P_E] * par[P_E] * par[P_E_W]
-
-
-@jit
-def elastic_below_resolution(r, rebound, scale, opt):
-    """An impact elastic at the resolution asked for (restitution r with
-    1 - r^2 <= rtol: it dissipates less than rtol of the energy, so the
-    bounces do not converge) whose rebound energy is below rtol times the
-    energy scale of its model ends as chatter (module docstring)."""
-    rtol = opt[O_RTOL]
-    return 1.0 - r * r <= rtol and rebound < rtol * scale
 
 
 @jit
