@@ -94,12 +94,13 @@ def call_kernel(kernel, *args, opt):
         return kernel(*args)
     if _EXECUTOR is None:
         _EXECUTOR = ThreadPoolExecutor(1, thread_name_prefix="fastrock-kernel")
-    future = _EXECUTOR.submit(kernel, *args)
     try:
-        return future.result()
+        return _EXECUTOR.submit(kernel, *args).result()
     except KeyboardInterrupt:
+        # Ctrl-C may land anywhere here, even before submit returned: a second task on the
+        # one-worker executor runs after the kernel, so waiting for it waits for the kernel
         opt[..., L.O_ABORT] = 1.0
-        future.result()
+        _EXECUTOR.submit(int).result()
         raise
 
 
@@ -163,7 +164,8 @@ def run_chunks(sweep_kernel, n, inputs, smp, consume, chunk_size=None, progress=
         while done < n:
             stop = min(n, done + chunk_size)
             y0, par, hdr, opt = inputs(done, stop)
-            st = np.empty(stop - done, np.int64)
+            # a row the kernel never wrote (Ctrl-C before it started) reads as interrupted
+            st = np.full(stop - done, L.FAIL_INTERRUPTED, np.int64)
             met = np.empty((stop - done, L.N_MET))
             yf = np.empty(y0.shape)
             try:
