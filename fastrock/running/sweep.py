@@ -94,13 +94,12 @@ def call_kernel(kernel, *args, opt):
         return kernel(*args)
     if _EXECUTOR is None:
         _EXECUTOR = ThreadPoolExecutor(1, thread_name_prefix="fastrock-kernel")
+    future = _EXECUTOR.submit(kernel, *args)
     try:
-        return _EXECUTOR.submit(kernel, *args).result()
+        return future.result()
     except KeyboardInterrupt:
-        # Ctrl-C may land anywhere here, even before submit returned: a second task on the
-        # one-worker executor runs after the kernel, so waiting for it waits for the kernel
         opt[..., L.O_ABORT] = 1.0
-        _EXECUTOR.submit(int).result()
+        future.result()
         raise
 
 
