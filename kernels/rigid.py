@@ -340,20 +340,7 @@ def peak_times(theta, w, s, alpha, p, e):
     """Times from now to the next two peaks of ``bounded_after_excitation``
     (free rocking below the barrier, theta'+ = e theta'- at impacts): a
     swing out to a peak and back to the impact take the same time."""
-    c = 1.0 - math.cos(alpha)
-    E = 0.5 * w * w / (p * p) + math.cos(alpha - s * theta) - math.cos(alpha)
-    e2 = e * e
-    to_peak = swing_time(0.5 * (alpha - s * theta), 0.5 * (c - E), p)
-    if s * w > 0.0:
-        e1 = E
-        t1 = to_peak
-    else:
-        e1 = e2 * E
-        t1 = (swing_time(0.5 * alpha, 0.5 * (c - E), p) - to_peak
-              + swing_time(0.5 * alpha, 0.5 * (c - e1), p))
-    t2 = (t1 + swing_time(0.5 * alpha, 0.5 * (c - e1), p)
-          + swing_time(0.5 * alpha, 0.5 * (c - e2 * e1), p))
-    return t1, t2
+    return peak_times_sides(theta, w, s, alpha, p, e, alpha, p, e)
 
 
 @jit
