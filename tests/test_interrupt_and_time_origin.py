@@ -83,3 +83,23 @@ def test_ctrl_c_inside_one_chunk_keeps_the_finished_rows():
     # the kept rows are finished runs: the first ones equal an uninterrupted run
     k = min(3, len(df))
     np.testing.assert_array_equal(df["max_rotation"].to_numpy()[:k], full["max_rotation"].to_numpy()[:k])
+
+
+def test_ctrl_c_during_a_run_calls_the_callers_own_handler():
+    """SIGINT is deferred while a kernel runs (never raised inside the wait,
+    where it could break the future's lock) and then handed to the handler
+    the caller had installed."""
+    body = FlexibleBody(0.2, 2.0, 10.0, zeta=0.02)
+    acc = np.random.default_rng(0).normal(0, 0.01, 2_000_000)
+    simulate(body, SampledMotion(acc[:100], 0.001, unit="g"))
+    seen = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: seen.append(signum))
+    try:
+        th = _sigint_after(0.5)
+        res = simulate(body, SampledMotion(acc, 0.001, unit="g"), t_eval=[1.0])
+        th.join()
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert seen == [signal.SIGINT]
+    assert res.status == "failed:interrupted"
+    assert signal.getsignal(signal.SIGINT) is previous

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import os
+import signal
 import sys
 import threading
 import warnings
@@ -83,24 +84,42 @@ def call_kernel(kernel, *args, opt):
     """Call a kernel so that Ctrl-C stops it within one integration step.
 
     Kernels release the GIL (``nogil``), so the call runs on a worker thread
-    while the main thread waits in Python, where KeyboardInterrupt arrives.
-    It then sets the abort flag of every run (``opt[..., O_ABORT]``, the
-    array the kernel reads), waits for the kernel to return (its unfinished
-    runs report ``failed:interrupted``) and raises KeyboardInterrupt again.
-    Off the main thread (Dask workers) the kernel is called directly.
+    while the main thread waits.  For the length of the call, SIGINT only
+    sets the abort flag of every run (``opt[..., O_ABORT]``, the array the
+    kernel reads); the kernel returns (its unfinished runs report
+    ``failed:interrupted``) and KeyboardInterrupt is raised after it.  The
+    interrupt is deferred, not raised while waiting, because a
+    KeyboardInterrupt that lands inside ``Condition.wait`` can leave the
+    future's lock released and surface as "RuntimeError: cannot release
+    un-acquired lock" (seen in CI).  Off the main thread (Dask workers), or
+    when SIGINT has a handler installed outside Python, the kernel is
+    called directly.
     """
     global _EXECUTOR
     if threading.current_thread() is not threading.main_thread():
         return kernel(*args)
+    previous = signal.getsignal(signal.SIGINT)
+    if previous is None or previous is signal.SIG_IGN:
+        return kernel(*args)
+    interrupted = []
+
+    def abort(signum, frame):
+        interrupted.append(signum)
+        opt[..., L.O_ABORT] = 1.0
+
     if _EXECUTOR is None:
         _EXECUTOR = ThreadPoolExecutor(1, thread_name_prefix="fastrock-kernel")
-    future = _EXECUTOR.submit(kernel, *args)
+    signal.signal(signal.SIGINT, abort)
     try:
-        return future.result()
-    except KeyboardInterrupt:
-        opt[..., L.O_ABORT] = 1.0
-        future.result()
-        raise
+        result = _EXECUTOR.submit(kernel, *args).result()
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if interrupted:
+        if callable(previous) and previous is not signal.default_int_handler:
+            previous(signal.SIGINT, None)
+        else:
+            raise KeyboardInterrupt
+    return result
 
 
 def run_sweep(sweep_kernel, Y0, PAR, HDR, smp, OPT, chunk_size=None, progress=True, label="runs",
