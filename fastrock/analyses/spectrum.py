@@ -281,7 +281,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         })
         # a model with a slip state and no friction= (an asymmetric body beside a wall): never slips
         part = _add_results(part, st, met, body, wall,
-                            (friction or Friction(np.inf, lift_off="flight")) if spec.friction else None)
+                            (friction or Friction.never_slipping()) if spec.friction else None)
         if spec.model.flight or spec.name == "contact":
             from fastrock.running.result import flight_metrics
             for k, v in flight_metrics(met).items():

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 import time
 
@@ -78,7 +77,7 @@ def _friction(args):
     from fastrock.model.friction import Friction
     if getattr(args, "mu_s", None) is None:
         if getattr(args, "lift_off", None) == "flight":
-            return Friction(math.inf, lift_off="flight")
+            return Friction.never_slipping()
         return None
     return Friction(args.mu_s, args.mu_k, lift_off=args.lift_off)
 

@@ -69,6 +69,13 @@ class Friction:
         V.non_negative("slide_tolerance", self.slide_tolerance)
         V.choice("lift_off", self.lift_off, LIFT_OFF)
 
+    @classmethod
+    def never_slipping(cls):
+        """``Friction(inf, lift_off="flight")``: a base that never slips but may
+        leave the ground, what the contact model runs when a scene gives no
+        ``friction=`` (an asymmetric body beside a wall)."""
+        return cls(math.inf, lift_off="flight")
+
     @property
     def sliding_possible(self):
         return math.isfinite(self.mu_s)

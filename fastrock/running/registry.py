@@ -309,7 +309,7 @@ def _contact_body(body, fx, mass):
     from fastrock.running.models import contact_par
     from fastrock.model.friction import Friction
     # a wall alone: a pivot that never slips (the contact model follows a lift-off into flight)
-    friction = fx.get("friction") or fx.get("flight") or Friction(float("inf"), lift_off="flight")
+    friction = fx.get("friction") or fx.get("flight") or Friction.never_slipping()
     return contact_par(body, friction, fx.get("wall"))
 
 
