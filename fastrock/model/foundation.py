@@ -20,6 +20,13 @@ height ``h`` (:meth:`RigidBlock.rectangle` or :meth:`RigidBlock.from_inertia`) p
 block's ``p``: ``I_0 = M g R / p^2`` about a corner, ``I_G = I_0 - M R^2``,
 ``I_C = I_G + M h^2`` about the base centre.
 
+An asymmetric :class:`fastrock.RigidBody` (b1 != b2, level base h1 = h2 = h) stands on the
+two-spring foundation only: its corners at ``x = -b1`` and ``x = b2`` from the base point below
+its centre of mass, which the model holds horizontally (the base centre of a symmetric block).
+Its mass on the foundation is ``M`` as for a block, its inertia ``I_G = M (inertia / mass)`` of
+the body (its radius of gyration). At rest it tilts toward its nearer corner (the corners share
+the weight unequally); ``b`` below is then the mean half-width ``(b1 + b2)/2``.
+
 Small-amplitude vibration in full contact (both models, P-Delta kept):
 ``I_C theta'' + c_t theta' + (k_t - M g h) theta = 0`` with ``k_t = 2 k_v b^2``,
 ``c_t = 2 c_v b^2`` for the two-spring foundation, so ``omega^2 = (k_t - M g h)/I_C`` and
@@ -41,20 +48,27 @@ import numpy as np
 
 from fastrock import _validate as V
 from fastrock.model.bodies import RigidBlock
+from fastrock.model.rigid_body import RigidBody
 # the kernels' parameter layout (kernels/layout.py imports no kernel)
 from fastrock.kernels.layout import (N_PAR_FOUNDATION as N_PAR, P_B, P_CT, P_CV, P_EF, P_H, P_I_0,
                                      P_I_C, P_I_G, P_KT, P_KV, P_MASS, P_THETA_Y)
 
-# discrete-state slots of the two-spring model (kept here as plain ints, checked against the
-# kernel in the tests)
+# discrete-state slots of the two-spring model and its asymmetric-body parameters (kept here as
+# plain ints, checked against the kernel in the tests)
 D_RIGHT = 6
 D_LEFT = 7
+P_B_SKEW = 22       # (b2 - b1)/2 [m]
+P_ALPHA_LEFT = 23   # alpha of the left corner's side [rad]
 
 
 # ------------------------------------------------------------------------------ body
 @dataclass(frozen=True)
 class BlockInertia:
-    """Mass properties of a block: ``M`` [kg], ``b``, ``h``, ``R`` [m], inertias [kg m^2]."""
+    """Mass properties of a block: ``M`` [kg], ``b``, ``h``, ``R`` [m], inertias [kg m^2].
+
+    An asymmetric body: ``b`` = (b1 + b2)/2, ``skew`` = (b2 - b1)/2 (its corners at
+    ``-b + skew`` and ``b + skew`` from the point below the centre of mass), ``R`` and ``I_0``
+    about its right corner."""
 
     M: float
     b: float
@@ -64,6 +78,17 @@ class BlockInertia:
     I_G: float
     I_C: float
     g: float
+    skew: float = 0.0
+
+    @property
+    def b1(self):
+        """Left half-width [m] (``b`` for a symmetric block)."""
+        return self.b - self.skew
+
+    @property
+    def b2(self):
+        """Right half-width [m]."""
+        return self.b + self.skew
 
 
 def block_inertia(body, mass=1.0):
@@ -71,14 +96,22 @@ def block_inertia(body, mass=1.0):
 
     ``I_0 = M g R / p^2`` (from the block's ``p``), ``I_G = I_0 - M R^2``, ``I_C = I_G + M h^2``.
 
+    A symmetric :class:`RigidBody` is its :class:`RigidBlock`; an asymmetric one (level base)
+    has ``I_G = M inertia / mass``, ``I_C = I_G + M h^2`` and ``skew`` = (b2 - b1)/2.
+
     Raises
     ------
     ValueError
-        If the body is not a :class:`RigidBlock` with known ``b`` and ``h``, or its ``p``
-        implies ``I_0 < M R^2``.
+        If the body is not a :class:`RigidBlock` with known ``b`` and ``h`` or a
+        :class:`RigidBody` with a level base, or its ``p`` implies ``I_0 < M R^2``.
     """
+    if isinstance(body, RigidBody):
+        if body.is_symmetric:
+            body = body.to_block()
+        else:
+            return _body_inertia(body, mass)
     if not isinstance(body, RigidBlock):
-        raise ValueError(f"body must be a fastrock.RigidBlock, got {type(body).__name__}")
+        raise ValueError(f"body must be a fastrock.RigidBlock or RigidBody, got {type(body).__name__}")
     if body.b is None or body.h is None:
         raise ValueError("body must have known b and h (use RigidBlock.rectangle(b, h) or "
                          "RigidBlock.from_inertia(R, alpha, I0, m))")
@@ -95,6 +128,29 @@ def block_inertia(body, mass=1.0):
                          f"(p must be <= sqrt(g/R) = {math.sqrt(g / R)})")
     I_G = max(I_G, 0.0)
     return BlockInertia(M=M, b=b, h=h, R=R, I_0=I0, I_G=I_G, I_C=I_G + M * h * h, g=g)
+
+
+def _body_inertia(body, mass):
+    """BlockInertia of an asymmetric RigidBody with a level base (mass ``mass``)."""
+    from fastrock.running.models import level_base_height
+    h = level_base_height(body, "foundation= needs",
+                          "the foundation's corner springs stand on one line through both pivots")
+    M = V.positive("mass", mass)
+    I_G = M * (body.inertia / body.mass)
+    R = math.hypot(body.b2, h)
+    return BlockInertia(M=M, b=0.5 * (body.b1 + body.b2), h=h, R=R, I_0=I_G + M * R * R, I_G=I_G,
+                        I_C=I_G + M * h * h, g=float(body.g), skew=0.5 * (body.b2 - body.b1))
+
+
+def _symmetric_only(blk, foundation):
+    """Refuse an asymmetric body on a foundation model of a symmetric block."""
+    if blk.skew != 0.0:
+        name = foundation.__name__ if isinstance(foundation, type) else type(foundation).__name__
+        raise ValueError(f"foundation={name}: an asymmetric RigidBody (b1 = {blk.b1:.6g} m, "
+                         f"b2 = {blk.b2:.6g} m) needs foundation=TwoSpringFoundation: the switching and linear "
+                         "SDOF models (Yu et al.) turn a symmetric block about its base centre, and an "
+                         "asymmetric body's rest state is tilted, carried unequally by its two corners")
+    return blk
 
 
 
@@ -133,8 +189,10 @@ def _static_tilt(stiffness, d_stiffness, blk, ground):
 
 
 # ------------------------------------------------------------------------ foundations
-def _rotational_from_vibration(body, omega, zeta, mass, p_delta):
+def _rotational_from_vibration(body, omega, zeta, mass, p_delta, foundation=None):
     blk = block_inertia(body, mass)
+    if foundation is not None:
+        _symmetric_only(blk, foundation)
     omega = V.positive("omega", omega)
     zeta = V.non_negative("zeta", zeta)
     k_t = omega ** 2 * blk.I_C + (blk.M * blk.g * blk.h if p_delta else 0.0)
@@ -153,6 +211,15 @@ def _vibration_of(blk, k_t, c_t, p_delta):
 @dataclass(frozen=True)
 class TwoSpringFoundation:
     """Tensionless spring-dashpots at the two bottom corners (docs: theory/foundation).
+
+    It carries a :class:`~fastrock.RigidBlock` or a :class:`~fastrock.RigidBody` (an asymmetric
+    one with a level base: its corners at -b1 and b2 from the base point below its centre of
+    mass, which stays horizontally fixed; it starts at rest at its static tilt, see
+    :meth:`initial_state`).  For an asymmetric body ``b`` in the formulas below is the mean
+    half-width (b1 + b2)/2: ``k_t = 2 k_v b^2`` is then the rocking stiffness with the vertical
+    motion condensed out (the springs' moment at fixed total force), and ``omega`` that of
+    ``k_t`` over ``I_C`` (exact for a symmetric block, whose rocking and vertical vibration do
+    not couple; for b1 != b2 the stiffness couples them).
 
     Parameters
     ----------
@@ -210,7 +277,15 @@ class TwoSpringFoundation:
 
         On a slope (``ground``) the block starts at rest in its static equilibrium: both
         corners compressed, ``y_c = -M g cos(phi) / (2 k_v)`` and the tilt q of
-        ``k_v b^2 sin(2q) = M g h sin(q + phi)`` (downhill, q > 0)."""
+        ``k_v b^2 sin(2q) = M g h sin(q + phi)`` (downhill, q > 0).
+
+        An asymmetric body (``blk.skew`` = c != 0) released from rest upright (theta0 =
+        dtheta0 = 0), or on a slope, starts at rest in its static equilibrium: the tilt q of
+        ``cos(q) (2 k_v b^2 sin(q) + c M G) = M g h sin(q + phi)`` (G = g cos(phi); toward its
+        nearer corner) and ``y_c = c sin(q) - M G / (2 k_v)``; any other release starts in
+        vertical equilibrium at theta0."""
+        if blk.skew != 0.0:
+            return self._body_initial_state(blk, theta0, dtheta0, ground)
         if _on_slope(ground):
             _check_slope_release(ground, theta0, dtheta0)
             kb2 = self.k_v * blk.b ** 2
@@ -224,6 +299,54 @@ class TwoSpringFoundation:
         lift = blk.b * math.sin(abs(theta0))
         yc = -d_s if lift <= d_s else lift - 2 * d_s
         return np.array([yc, 0.0, theta0, dtheta0], float)
+
+    def _body_initial_state(self, blk, theta0, dtheta0, ground):
+        """initial_state of an asymmetric body (corners at x_s = s b + c, c = blk.skew)."""
+        a, c = blk.b, blk.skew
+        if _on_slope(ground) or (theta0 == 0.0 and dtheta0 == 0.0):
+            phi = ground.slope if _on_slope(ground) else 0.0
+            if _on_slope(ground):
+                _check_slope_release(ground, theta0, dtheta0)
+            q = self.rest_tilt(blk, phi)
+            d_s = blk.M * blk.g * math.cos(phi) / (2 * self.k_v)
+            return np.array([c * math.sin(q) - d_s, 0.0, q, 0.0], float)
+        d_s = blk.M * blk.g / (2 * self.k_v)
+        sq = math.sin(theta0)
+        if a * abs(sq) <= d_s:          # both corners carry it
+            yc = c * sq - d_s
+        else:                           # the lower corner alone
+            yc = (math.copysign(a, sq) + c) * sq - 2 * d_s
+        return np.array([yc, 0.0, theta0, dtheta0], float)
+
+    def rest_tilt(self, blk, slope=0.0):
+        """Static rotation q [rad] of the body at rest on both corners (Newton from q = 0):
+        ``cos(q) (2 k_v b^2 sin(q) + c M G) = M g h sin(q + slope)``, G = g cos(slope),
+        c = (b2 - b1)/2 (q = 0 on level ground for a symmetric block).  Refused, naming
+        ``k_v``, if no stable rest with both corners on their springs lies between -alpha1 and
+        alpha2."""
+        a, c, M, g, h = blk.b, blk.skew, blk.M, blk.g, blk.h
+        G = g * math.cos(slope)
+        k2 = 2.0 * self.k_v * a * a
+        q = 0.0
+        for _ in range(60):
+            sq, cq = math.sin(q), math.cos(q)
+            f = cq * (k2 * sq + c * M * G) - M * g * h * math.sin(q + slope)
+            df = k2 * math.cos(2.0 * q) - c * M * G * sq - M * g * h * math.cos(q + slope)
+            if df <= 0.0:
+                break
+            step = f / df
+            q -= step
+            if abs(step) <= 1e-15 * max(1.0, abs(q)):
+                stable = (k2 * math.cos(2.0 * q) - c * M * G * math.sin(q)
+                          - M * g * h * math.cos(q + slope)) > 0.0
+                on_springs = a * abs(math.sin(q)) < M * G / (2.0 * self.k_v)
+                if stable and on_springs and -math.atan2(blk.b1, h) < q < math.atan2(blk.b2, h):
+                    return q
+                break
+        where = f"slope = {slope:.6g} rad: " if slope else ""
+        raise ValueError(f"k_v = {self.k_v:.6g} N/m: {where}the body has no stable rest on both corner "
+                         f"springs (b1 = {blk.b1:.6g} m, b2 = {blk.b2:.6g} m, h = {h:.6g} m, M = {M:.6g} kg): "
+                         "its weight's moment about the base centre lifts a corner; stiffer springs hold it")
 
 
 @dataclass(frozen=True)
@@ -255,19 +378,20 @@ class SwitchingFoundation:
     def from_vibration(cls, body, omega, zeta=0.0, e_f=1.0, mass=1.0):
         """Contact phase with vibration ``omega`` [rad/s] and damping ratio ``zeta``:
         ``k_t = omega^2 I_C + M g h``, ``c_t = 2 zeta omega I_C``."""
-        _blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, True)
+        _blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, True, cls)
         return cls(k_t=k_t, c_t=c_t, e_f=e_f)
 
     def vibration(self, body, mass=1.0):
         """``(omega [rad/s], zeta)`` of the contact phase (P-Delta kept)."""
-        return _vibration_of(block_inertia(body, mass), self.k_t, self.c_t, True)
+        return _vibration_of(_symmetric_only(block_inertia(body, mass), self), self.k_t, self.c_t, True)
 
     def uplift_rotation(self, body, mass=1.0):
         """``theta_y = M g b / k_t`` [rad]."""
-        blk = block_inertia(body, mass)
+        blk = _symmetric_only(block_inertia(body, mass), self)
         return blk.M * blk.g * blk.b / self.k_t
 
     def fill_par(self, par, blk):
+        _symmetric_only(blk, self)
         par[P_KT] = self.k_t
         par[P_CT] = self.c_t
         par[P_EF] = self.e_f
@@ -310,13 +434,14 @@ class LinearVibration:
     @classmethod
     def from_vibration(cls, body, omega, zeta=0.0, mass=1.0):
         """``k_t = omega^2 I_C``, ``c_t = 2 zeta omega I_C``."""
-        _blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, False)
+        _blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, False, cls)
         return cls(k_t=k_t, c_t=c_t)
 
     def vibration(self, body, mass=1.0):
-        return _vibration_of(block_inertia(body, mass), self.k_t, self.c_t, False)
+        return _vibration_of(_symmetric_only(block_inertia(body, mass), self), self.k_t, self.c_t, False)
 
     def fill_par(self, par, blk):
+        _symmetric_only(blk, self)
         par[P_KT] = self.k_t
         par[P_CT] = self.c_t
         par[P_THETA_Y] = np.inf
@@ -334,14 +459,22 @@ FOUNDATIONS = (TwoSpringFoundation, SwitchingFoundation, LinearVibration)
 
 
 def foundation_par(body, foundation, mass=1.0):
-    """Parameter vector of a block on a foundation (registry ``build_par``)."""
+    """Parameter vector of a block on a foundation (registry ``build_par``); an asymmetric
+    RigidBody's rigid entries hold its right side (alpha2, p2, e21), as in the rigid_body
+    model's, and P_ALPHA_LEFT its alpha1."""
     blk = block_inertia(body, mass)
     par = np.zeros(N_PAR)
-    par[0] = body.alpha          # rigid layout: alpha, p, e, g, theta_over
-    par[1] = body.p
-    par[2] = body.e
+    if blk.skew != 0.0:
+        par[0], par[1], par[2] = body.alpha2, body.p2, body.e21
+        par[P_ALPHA_LEFT] = body.alpha1
+    else:
+        par[0] = body.alpha      # rigid layout: alpha, p, e, g, theta_over
+        par[1] = body.p
+        par[2] = body.e
+        par[P_ALPHA_LEFT] = body.alpha
     par[3] = body.g
     par[4] = body.theta_over
+    par[P_B_SKEW] = blk.skew
     par[P_MASS] = blk.M
     par[P_I_G] = blk.I_G
     par[P_B] = blk.b
