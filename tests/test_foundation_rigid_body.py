@@ -230,6 +230,30 @@ def test_stiff_foundation_converges_to_the_rigid_asymmetric_body(sign):
     assert errs[-1, 0] < 1e-5, errs
 
 
+# -------------------------------------------------------------------------- energy
+@pytest.mark.parametrize("c_v", [0.0, 80.0])
+def test_free_rocking_energy_is_kept_or_dissipated(c_v):
+    """Released at theta0 = -0.1 rad (onto its left corner): E = T + M g y_G + sum k_v max(delta, 0)^2
+    / 2 with the corners at -b1 and b2 stays constant without dashpots (to integration tolerance)
+    and never grows with them (physics.md 5.1)."""
+    fnd = TwoSpringFoundation(k_v=5.0e4, c_v=c_v)
+    blk = block_inertia(ASYM)
+    r = fr.simulate(ASYM, None, foundation=fnd, theta0=-0.1, duration=3.0, rtol=1e-11, atol=1e-13)
+    h = r.history
+    y, yd, q, qd = (h[c].to_numpy() for c in ("y", "y_dot", "theta", "theta_dot"))
+    M, hh = blk.M, blk.h
+    E = (0.5 * M * (yd ** 2 - 2 * hh * np.sin(q) * yd * qd + hh ** 2 * qd ** 2) + 0.5 * blk.I_G * qd ** 2
+         + M * blk.g * (y + hh * np.cos(q)))
+    for x in (ASYM.b2, -ASYM.b1):
+        E = E + 0.5 * fnd.k_v * np.maximum(x * np.sin(q) - y, 0.0) ** 2
+    assert r.metrics["impacts"] >= 2
+    scale = M * blk.g * ASYM.b1 * 0.1
+    if c_v == 0.0:
+        assert np.max(np.abs(E - E[0])) < 1e-6 * scale
+    else:
+        assert np.max(np.diff(E)) < 1e-8 * scale and E[-1] < E[0] - 0.5 * scale
+
+
 # -------------------------------------------------------------------------- mirror
 @pytest.mark.parametrize("sign", [1, -1])
 def test_mirrored_body_under_the_mirrored_pulse_mirrors_the_run(sign):
