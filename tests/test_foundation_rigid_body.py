@@ -348,3 +348,26 @@ def test_bad_input_is_refused_with_a_clear_error():
     # springs too soft for the tilt: the lighter-loaded corner leaves its spring
     with pytest.raises(ValueError, match=r"^k_v = 5 N/m: the body has no stable rest on both corner springs"):
         fr.simulate(ASYM, pulse(1), foundation=TwoSpringFoundation(5.0))
+
+
+def test_cli_spectrum_of_an_outline_on_the_foundation(tmp_path):
+    """``fastrock spectrum --outline ... --foundation two-spring`` (the CLI's foundation options
+    take the outline's body as they are): the table equals overturning_spectrum's, both sides."""
+    import pandas as pd
+    from fastrock.cli import app as cli
+    (tmp_path / "wedge.csv").write_text("0 0\n0.45 0\n0.45 1.6\n0.15 1.6\n")
+    csv = tmp_path / "w.csv"
+    grid = ["--n-amp", "3", "--amp-min", "1.0", "--amp-max", "4", "--n-freq", "2", "--freq-min", "1.0",
+            "--freq-max", "4", "--sign", "both", "-q"]
+    assert cli.main(["spectrum", "--outline", str(tmp_path / "wedge.csv"), "--mass", "50", "--foundation",
+                     "two-spring", "--foundation-omega", "40", "--foundation-zeta", "0.05", *grid,
+                     "--csv", str(csv), "--png", str(tmp_path / "w.png")]) == 0
+    body = RigidBody.from_polygon([(0, 0), (0.45, 0), (0.45, 1.6), (0.15, 1.6)], mass=50.0)
+    assert not body.is_symmetric
+    fnd = TwoSpringFoundation.from_vibration(body, 40.0, 0.05, mass=50.0)
+    ref = fr.overturning_spectrum(body, np.linspace(1.0, 4, 3), np.linspace(1.0, 4, 2), sign=[1, -1],
+                                  foundation=fnd, mass=50.0, progress=False)
+    got = pd.read_csv(csv)
+    assert list(got["outcome"]) == list(ref["outcome"].astype(str))
+    assert list(got["side"]) == list(ref["side"]) and {-1, 0, 1} == set(got["side"])
+    np.testing.assert_allclose(got["max_rotation"], ref["max_rotation"], rtol=1e-12)
