@@ -142,6 +142,69 @@ def _body_inertia(body, mass):
                         I_C=I_G + M * h * h, g=float(body.g), skew=0.5 * (body.b2 - body.b1))
 
 
+def _rocking_is_lower(blk, k_v):
+    """True when the rocking mode is the lower one of the uncoupled (c = 0) pair at k_v: rocking
+    (2 k_v b^2 - M g h) / I_C <= vertical 2 k_v / M (a slender body)."""
+    return (2.0 * k_v * blk.b ** 2 - blk.M * blk.g * blk.h) / blk.I_C <= 2.0 * k_v / blk.M
+
+
+def _coupled_omega(blk, k_v):
+    """Rocking eigenfrequency [rad/s] of an asymmetric body on the two springs, linearised at its
+    rest tilt q (:meth:`TwoSpringFoundation.rest_tilt`): the root w^2 of det(K - w^2 M_q) = 0 with
+    the mass matrix M_q = [[M, -M h sin q], [-M h sin q, I_C]] and the Hessian K of
+    V = M g (y + h cos q) + k_v/2 sum_s (x_s sin q - y)^2, on the rocking branch (the branches
+    never cross for c != 0); NaN when it is not positive or the body has no rest."""
+    try:
+        q = TwoSpringFoundation(k_v).rest_tilt(blk)
+    except ValueError:
+        return float("nan")
+    k, M, IC, h = k_v, blk.M, blk.I_C, blk.h
+    y = blk.skew * math.sin(q) - M * blk.g / (2.0 * k)
+    sq, cq = math.sin(q), math.cos(q)
+    kyy, kyq, kqq = 2.0 * k, 0.0, -M * blk.g * h * cq
+    for x in (blk.b2, -blk.b1):
+        kyq -= k * x * cq
+        kqq += k * (x * x * cq * cq - (x * sq - y) * x * sq)
+    myq = -M * h * sq
+    a2 = M * IC - myq * myq
+    a1 = kyy * IC + kqq * M - 2.0 * kyq * myq
+    a0 = kyy * kqq - kyq * kyq
+    hi = (a1 + math.sqrt(a1 * a1 - 4.0 * a2 * a0)) / (2.0 * a2)
+    lam = a0 / (a2 * hi) if _rocking_is_lower(blk, k_v) else hi
+    return math.sqrt(lam) if lam > 0.0 else float("nan")
+
+
+def _coupled_k_v(blk, omega):
+    """k_v whose rocking eigenfrequency (:func:`_coupled_omega`) is ``omega``: from the upright
+    linearisation's root of 4 b^2 k^2 - 2 k (P + Q (b^2 + c^2)) + Q P = 0 (P = M g h +
+    omega^2 I_C, Q = omega^2 M; rocking branch, k = P / (2 b^2) at c = 0), then Brent's method
+    on the rest-tilt linearisation."""
+    from scipy.optimize import brentq
+    a, c = blk.b, blk.skew
+    P = blk.M * blk.g * blk.h + omega ** 2 * blk.I_C
+    Q = omega ** 2 * blk.M
+    S = P + Q * (a * a + c * c)
+    hi = (S + math.sqrt(S * S - 4.0 * a * a * Q * P)) / (4.0 * a * a)
+    k0 = hi if P >= Q * a * a else Q * P / (4.0 * a * a * hi)
+
+    def miss(k):
+        w = _coupled_omega(blk, k)
+        return -omega if math.isnan(w) else w - omega     # no rest: too soft
+    lo, up = k0, k0
+    for _ in range(200):
+        if miss(lo) < 0.0:
+            break
+        lo /= 1.05
+    for _ in range(200):
+        if miss(up) > 0.0:
+            break
+        up *= 1.05
+    if not miss(lo) < 0.0 < miss(up):
+        raise ValueError(f"omega = {omega:.6g} rad/s: no corner stiffness gives this body that rocking "
+                         "frequency at rest on both springs")
+    return brentq(miss, lo, up, xtol=1e-300, rtol=1e-15)
+
+
 def _symmetric_only(blk, foundation):
     """Refuse an asymmetric body on a foundation model of a symmetric block."""
     if blk.skew != 0.0:
@@ -217,9 +280,8 @@ class TwoSpringFoundation:
     mass, which stays horizontally fixed; it starts at rest at its static tilt, see
     :meth:`initial_state`).  For an asymmetric body ``b`` in the formulas below is the mean
     half-width (b1 + b2)/2: ``k_t = 2 k_v b^2`` is then the rocking stiffness with the vertical
-    motion condensed out (the springs' moment at fixed total force), and ``omega`` that of
-    ``k_t`` over ``I_C`` (exact for a symmetric block, whose rocking and vertical vibration do
-    not couple; for b1 != b2 the stiffness couples them).
+    motion condensed out (the springs' moment at fixed total force); ``omega`` is the rocking
+    mode's frequency of the coupled rocking and vertical vibration (:meth:`vibration`).
 
     Parameters
     ----------
@@ -243,8 +305,12 @@ class TwoSpringFoundation:
         """Corner springs giving rocking vibration ``omega`` [rad/s] with damping ratio ``zeta``.
 
         ``k_v = (omega^2 I_C + M g h) / (2 b^2)``, ``c_v = 2 zeta omega I_C / (2 b^2)``.
+        An asymmetric body: ``k_v`` makes ``omega`` its rocking mode's frequency (see
+        :meth:`vibration`), ``c_v`` as above.
         """
         blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, True)
+        if blk.skew != 0.0:
+            return cls(k_v=_coupled_k_v(blk, omega), c_v=c_t / (2 * blk.b ** 2))
         return cls(k_v=k_t / (2 * blk.b ** 2), c_v=c_t / (2 * blk.b ** 2))
 
     def rotational(self, body, mass=1.0):
@@ -254,9 +320,18 @@ class TwoSpringFoundation:
 
     def vibration(self, body, mass=1.0):
         """``(omega [rad/s], zeta)`` of small rocking vibration in full contact (P-Delta kept);
-        NaN if ``k_t <= M g h`` (unstable on the foundation)."""
+        NaN if ``k_t <= M g h`` (unstable on the foundation).
+
+        An asymmetric body's springs couple rocking and vertical motion (the stiffness term
+        ``-2 k_v c`` between y and q, c = (b2 - b1)/2): ``omega`` is then the eigenfrequency of the
+        two-degree-of-freedom vibration about its rest tilt whose mode turns into pure rocking as
+        c -> 0, and ``zeta = c_t / (2 I_C omega)`` as for the block."""
         k_t, c_t = self.rotational(body, mass)
-        return _vibration_of(block_inertia(body, mass), k_t, c_t, True)
+        blk = block_inertia(body, mass)
+        if blk.skew != 0.0:
+            om = _coupled_omega(blk, self.k_v)
+            return om, c_t / (2.0 * blk.I_C * om)
+        return _vibration_of(blk, k_t, c_t, True)
 
     def uplift_rotation(self, body, mass=1.0):
         """Static lift-off rotation ``theta_y = M g / (2 k_v b)`` [rad] (small angles)."""
