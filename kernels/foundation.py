@@ -5,9 +5,13 @@ Three models, each with entry kernels ``<name>_simulate`` (same signature as
 
 ``two_spring`` (physics.md 5.1, the reference)
     State ``y = (y_c, y_c', q, q')`` [m, m/s, rad, rad/s]: vertical
-    displacement of the base centre (horizontally fixed) and rotation.
-    Corner spring-dashpots ``k_v, c_v`` at ``x = +-b``; compression of corner
-    ``s`` (+1 right, -1 left) ``delta_s = -(y_c - s b sin q)``; force
+    displacement of the base point below the centre of mass (horizontally
+    fixed; the base centre of a symmetric block) and rotation.
+    Corner spring-dashpots ``k_v, c_v`` at ``x_s = s b + c`` from that point
+    (``b`` the mean half-width, ``c = (b2 - b1)/2`` the base centre's offset:
+    ``x = -b1`` and ``x = b2`` for an asymmetric body, ``+-b`` when c = 0);
+    compression of corner ``s`` (+1 right, -1 left)
+    ``delta_s = -(y_c - x_s sin q)``; force
     ``f_s = k_v delta_s + c_v delta_s'`` while the corner is in contact, 0
     while it is free.  A corner in contact becomes free when its force
     reaches 0 (lift-off, possibly with ``delta_s > 0``: the dashpot lets go
@@ -46,7 +50,9 @@ Parameters ``par`` (indices P_*): the first entries are the rigid layout
 (``alpha, p, e, g, theta_over``; ``p^2 = M g R / I_0``, so that
 ``rigid.theta_ddot`` serves the rocking phase), then the body and the
 foundation in SI units (kg, m, N/m, N s/m, N m/rad, N m s/rad).  The front
-end fills every entry, derived ones included (``I_C, I_0, theta_y``).
+end fills every entry, derived ones included (``I_C, I_0, theta_y``).  An
+asymmetric body (two_spring only) puts its right side's alpha in P_ALPHA and
+its left side's in P_ALPHA_LEFT (both alpha for a symmetric block).
 
 Status at the end of a run: SAFE_NO_UPLIFT (never lifted off), SAFE_REST
 (lifted off, ended in full contact -- vibrating on the foundation or at
@@ -71,6 +77,10 @@ from .rigid import (P_ALPHA, P_G, P_P, P_THETA_OVER,
 from .layout import (N_PAR_FOUNDATION as N_PAR, P_B, P_CT, P_CV,  # noqa: E402,F401
                      P_EF, P_H, P_I_0, P_I_C, P_I_G, P_KT, P_KV, P_MASS,
                      P_THETA_Y)
+
+# ---- asymmetric body: two free slots of N_PAR_FOUNDATION (kernels/layout.py) --
+P_B_SKEW = 22       # m, c = (b2 - b1)/2: base centre right of the point below the CM
+P_ALPHA_LEFT = 23   # rad, alpha of the left corner's side (theta < 0)
 
 # ---- discrete state (model-specific use of the free slots) -----------------
 D_SIDE = 5       # sign of the rotation for the zero-crossing event (0: none yet)
@@ -122,9 +132,15 @@ def observe_rotation(obs, t, theta, dtheta, disc, par, met, log, cnt):
 
 
 @jit
+def side_alpha(theta, par):
+    """alpha of the side theta leans to (P_ALPHA right, P_ALPHA_LEFT left)."""
+    return par[P_ALPHA] if theta >= 0.0 else par[P_ALPHA_LEFT]
+
+
+@jit
 def init_pass_alpha(t0, theta, par, met):
     """A release beyond alpha has passed the unstable equilibrium at t0."""
-    if abs(theta) > par[P_ALPHA]:
+    if abs(theta) > side_alpha(theta, par):
         met[M_T_PASS_ALPHA] = t0
 
 
@@ -146,12 +162,18 @@ TS_PASS_ALPHA = 5   # observer: |q| = alpha
 
 
 @jit
+def corner_arm(side, par):
+    """x_s = s b + c: corner ``side`` from the point below the CM [m] (s b when c = 0)."""
+    return side * par[P_B] + par[P_B_SKEW]
+
+
+@jit
 def corner_compression(y, side, par):
     """(delta, delta') of corner ``side`` [m, m/s]."""
-    b = par[P_B]
+    x = corner_arm(side, par)
     sq = math.sin(y[2])
     cq = math.cos(y[2])
-    return -(y[0] - side * b * sq), -(y[1] - side * b * cq * y[3])
+    return -(y[0] - x * sq), -(y[1] - x * cq * y[3])
 
 
 @jit
@@ -176,7 +198,10 @@ def ts_accelerations(t, y, par, disc, hdr, smp):
     sq = math.sin(y[2])
     cq = math.cos(y[2])
     ry = fR + fL - M * G + M * h * cq * y[3] * y[3]
-    rq = M * G * h * sq - M * h * ag * cq - b * cq * (fR - fL)
+    # moment cq (x_R f_R + x_L f_L) = cq (b (f_R - f_L) + c (f_R + f_L)): the
+    # c term adds exactly 0 for a symmetric block
+    rq = (M * G * h * sq - M * h * ag * cq - b * cq * (fR - fL)
+          - par[P_B_SKEW] * cq * (fR + fL))
     mh = M * h * sq
     det = M * IC - mh * mh
     return (IC * ry + mh * rq) / det, (mh * ry + M * rq) / det
@@ -197,10 +222,10 @@ def ts_corner_event(side, in_contact, t, y, par, disc, hdr, smp):
     c = par[P_CV]
     d, dd = corner_compression(y, side, par)
     ydd, qdd = ts_accelerations(t, y, par, disc, hdr, smp)
-    b = par[P_B]
+    x = corner_arm(side, par)
     sq = math.sin(y[2])
     cq = math.cos(y[2])
-    ddd = -(ydd - side * b * (cq * qdd - sq * y[3] * y[3]))
+    ddd = -(ydd - x * (cq * qdd - sq * y[3] * y[3]))
     f = k * d + c * dd
     fdot = k * dd + c * ddd
     if in_contact != 0:
@@ -232,7 +257,7 @@ def ts_event(k, t, y, par, disc, hdr, smp):
         _ydd, qdd = ts_accelerations(t, y, par, disc, hdr, smp)
         return sd * y[3], sd * qdd, False
     sg = 1.0 if y[2] >= 0.0 else -1.0
-    return par[P_ALPHA] - sg * y[2], -sg * y[3], False
+    return side_alpha(y[2], par) - sg * y[2], -sg * y[3], False
 
 
 @jit

@@ -20,6 +20,13 @@ height ``h`` (:meth:`RigidBlock.rectangle` or :meth:`RigidBlock.from_inertia`) p
 block's ``p``: ``I_0 = M g R / p^2`` about a corner, ``I_G = I_0 - M R^2``,
 ``I_C = I_G + M h^2`` about the base centre.
 
+An asymmetric :class:`fastrock.RigidBody` (b1 != b2, level base h1 = h2 = h) stands on the
+two-spring foundation only: its corners at ``x = -b1`` and ``x = b2`` from the base point below
+its centre of mass, which the model holds horizontally (the base centre of a symmetric block).
+Its mass on the foundation is ``M`` as for a block, its inertia ``I_G = M (inertia / mass)`` of
+the body (its radius of gyration). At rest it tilts toward its nearer corner (the corners share
+the weight unequally); ``b`` below is then the mean half-width ``(b1 + b2)/2``.
+
 Small-amplitude vibration in full contact (both models, P-Delta kept):
 ``I_C theta'' + c_t theta' + (k_t - M g h) theta = 0`` with ``k_t = 2 k_v b^2``,
 ``c_t = 2 c_v b^2`` for the two-spring foundation, so ``omega^2 = (k_t - M g h)/I_C`` and
@@ -41,20 +48,27 @@ import numpy as np
 
 from fastrock import _validate as V
 from fastrock.model.bodies import RigidBlock
+from fastrock.model.rigid_body import RigidBody
 # the kernels' parameter layout (kernels/layout.py imports no kernel)
 from fastrock.kernels.layout import (N_PAR_FOUNDATION as N_PAR, P_B, P_CT, P_CV, P_EF, P_H, P_I_0,
                                      P_I_C, P_I_G, P_KT, P_KV, P_MASS, P_THETA_Y)
 
-# discrete-state slots of the two-spring model (kept here as plain ints, checked against the
-# kernel in the tests)
+# discrete-state slots of the two-spring model and its asymmetric-body parameters (kept here as
+# plain ints, checked against the kernel in the tests)
 D_RIGHT = 6
 D_LEFT = 7
+P_B_SKEW = 22       # (b2 - b1)/2 [m]
+P_ALPHA_LEFT = 23   # alpha of the left corner's side [rad]
 
 
 # ------------------------------------------------------------------------------ body
 @dataclass(frozen=True)
 class BlockInertia:
-    """Mass properties of a block: ``M`` [kg], ``b``, ``h``, ``R`` [m], inertias [kg m^2]."""
+    """Mass properties of a block: ``M`` [kg], ``b``, ``h``, ``R`` [m], inertias [kg m^2].
+
+    An asymmetric body: ``b`` = (b1 + b2)/2, ``skew`` = (b2 - b1)/2 (its corners at
+    ``-b + skew`` and ``b + skew`` from the point below the centre of mass), ``R`` and ``I_0``
+    about its right corner."""
 
     M: float
     b: float
@@ -64,6 +78,17 @@ class BlockInertia:
     I_G: float
     I_C: float
     g: float
+    skew: float = 0.0
+
+    @property
+    def b1(self):
+        """Left half-width [m] (``b`` for a symmetric block)."""
+        return self.b - self.skew
+
+    @property
+    def b2(self):
+        """Right half-width [m]."""
+        return self.b + self.skew
 
 
 def block_inertia(body, mass=1.0):
@@ -71,14 +96,22 @@ def block_inertia(body, mass=1.0):
 
     ``I_0 = M g R / p^2`` (from the block's ``p``), ``I_G = I_0 - M R^2``, ``I_C = I_G + M h^2``.
 
+    A symmetric :class:`RigidBody` is its :class:`RigidBlock`; an asymmetric one (level base)
+    has ``I_G = M inertia / mass``, ``I_C = I_G + M h^2`` and ``skew`` = (b2 - b1)/2.
+
     Raises
     ------
     ValueError
-        If the body is not a :class:`RigidBlock` with known ``b`` and ``h``, or its ``p``
-        implies ``I_0 < M R^2``.
+        If the body is not a :class:`RigidBlock` with known ``b`` and ``h`` or a
+        :class:`RigidBody` with a level base, or its ``p`` implies ``I_0 < M R^2``.
     """
+    if isinstance(body, RigidBody):
+        if body.is_symmetric:
+            body = body.to_block()
+        else:
+            return _body_inertia(body, mass)
     if not isinstance(body, RigidBlock):
-        raise ValueError(f"body must be a fastrock.RigidBlock, got {type(body).__name__}")
+        raise ValueError(f"body must be a fastrock.RigidBlock or RigidBody, got {type(body).__name__}")
     if body.b is None or body.h is None:
         raise ValueError("body must have known b and h (use RigidBlock.rectangle(b, h) or "
                          "RigidBlock.from_inertia(R, alpha, I0, m))")
@@ -95,6 +128,92 @@ def block_inertia(body, mass=1.0):
                          f"(p must be <= sqrt(g/R) = {math.sqrt(g / R)})")
     I_G = max(I_G, 0.0)
     return BlockInertia(M=M, b=b, h=h, R=R, I_0=I0, I_G=I_G, I_C=I_G + M * h * h, g=g)
+
+
+def _body_inertia(body, mass):
+    """BlockInertia of an asymmetric RigidBody with a level base (mass ``mass``)."""
+    from fastrock.running.models import level_base_height
+    h = level_base_height(body, "foundation= needs",
+                          "the foundation's corner springs stand on one line through both pivots")
+    M = V.positive("mass", mass)
+    I_G = M * (body.inertia / body.mass)
+    R = math.hypot(body.b2, h)
+    return BlockInertia(M=M, b=0.5 * (body.b1 + body.b2), h=h, R=R, I_0=I_G + M * R * R, I_G=I_G,
+                        I_C=I_G + M * h * h, g=float(body.g), skew=0.5 * (body.b2 - body.b1))
+
+
+def _rocking_is_lower(blk, k_v):
+    """True when the rocking mode is the lower one of the uncoupled (c = 0) pair at k_v: rocking
+    (2 k_v b^2 - M g h) / I_C <= vertical 2 k_v / M (a slender body)."""
+    return (2.0 * k_v * blk.b ** 2 - blk.M * blk.g * blk.h) / blk.I_C <= 2.0 * k_v / blk.M
+
+
+def _coupled_omega(blk, k_v):
+    """Rocking eigenfrequency [rad/s] of an asymmetric body on the two springs, linearised at its
+    rest tilt q (:meth:`TwoSpringFoundation.rest_tilt`): the root w^2 of det(K - w^2 M_q) = 0 with
+    the mass matrix M_q = [[M, -M h sin q], [-M h sin q, I_C]] and the Hessian K of
+    V = M g (y + h cos q) + k_v/2 sum_s (x_s sin q - y)^2, on the rocking branch (the branches
+    never cross for c != 0); NaN when it is not positive or the body has no rest."""
+    try:
+        q = TwoSpringFoundation(k_v).rest_tilt(blk)
+    except ValueError:
+        return float("nan")
+    k, M, IC, h = k_v, blk.M, blk.I_C, blk.h
+    y = blk.skew * math.sin(q) - M * blk.g / (2.0 * k)
+    sq, cq = math.sin(q), math.cos(q)
+    kyy, kyq, kqq = 2.0 * k, 0.0, -M * blk.g * h * cq
+    for x in (blk.b2, -blk.b1):
+        kyq -= k * x * cq
+        kqq += k * (x * x * cq * cq - (x * sq - y) * x * sq)
+    myq = -M * h * sq
+    a2 = M * IC - myq * myq
+    a1 = kyy * IC + kqq * M - 2.0 * kyq * myq
+    a0 = kyy * kqq - kyq * kyq
+    hi = (a1 + math.sqrt(a1 * a1 - 4.0 * a2 * a0)) / (2.0 * a2)
+    lam = a0 / (a2 * hi) if _rocking_is_lower(blk, k_v) else hi
+    return math.sqrt(lam) if lam > 0.0 else float("nan")
+
+
+def _coupled_k_v(blk, omega):
+    """k_v whose rocking eigenfrequency (:func:`_coupled_omega`) is ``omega``: from the upright
+    linearisation's root of 4 b^2 k^2 - 2 k (P + Q (b^2 + c^2)) + Q P = 0 (P = M g h +
+    omega^2 I_C, Q = omega^2 M; rocking branch, k = P / (2 b^2) at c = 0), then Brent's method
+    on the rest-tilt linearisation."""
+    from scipy.optimize import brentq
+    a, c = blk.b, blk.skew
+    P = blk.M * blk.g * blk.h + omega ** 2 * blk.I_C
+    Q = omega ** 2 * blk.M
+    S = P + Q * (a * a + c * c)
+    hi = (S + math.sqrt(S * S - 4.0 * a * a * Q * P)) / (4.0 * a * a)
+    k0 = hi if P >= Q * a * a else Q * P / (4.0 * a * a * hi)
+
+    def miss(k):
+        w = _coupled_omega(blk, k)
+        return -omega if math.isnan(w) else w - omega     # no rest: too soft
+    lo, up = k0, k0
+    for _ in range(200):
+        if miss(lo) < 0.0:
+            break
+        lo /= 1.05
+    for _ in range(200):
+        if miss(up) > 0.0:
+            break
+        up *= 1.05
+    if not miss(lo) < 0.0 < miss(up):
+        raise ValueError(f"omega = {omega:.6g} rad/s: no corner stiffness gives this body that rocking "
+                         "frequency at rest on both springs")
+    return brentq(miss, lo, up, xtol=1e-300, rtol=1e-15)
+
+
+def _symmetric_only(blk, foundation):
+    """Refuse an asymmetric body on a foundation model of a symmetric block."""
+    if blk.skew != 0.0:
+        name = foundation.__name__ if isinstance(foundation, type) else type(foundation).__name__
+        raise ValueError(f"foundation={name}: an asymmetric RigidBody (b1 = {blk.b1:.6g} m, "
+                         f"b2 = {blk.b2:.6g} m) needs foundation=TwoSpringFoundation: the switching and linear "
+                         "SDOF models (Yu et al.) turn a symmetric block about its base centre, and an "
+                         "asymmetric body's rest state is tilted, carried unequally by its two corners")
+    return blk
 
 
 
@@ -133,8 +252,10 @@ def _static_tilt(stiffness, d_stiffness, blk, ground):
 
 
 # ------------------------------------------------------------------------ foundations
-def _rotational_from_vibration(body, omega, zeta, mass, p_delta):
+def _rotational_from_vibration(body, omega, zeta, mass, p_delta, foundation=None):
     blk = block_inertia(body, mass)
+    if foundation is not None:
+        _symmetric_only(blk, foundation)
     omega = V.positive("omega", omega)
     zeta = V.non_negative("zeta", zeta)
     k_t = omega ** 2 * blk.I_C + (blk.M * blk.g * blk.h if p_delta else 0.0)
@@ -153,6 +274,14 @@ def _vibration_of(blk, k_t, c_t, p_delta):
 @dataclass(frozen=True)
 class TwoSpringFoundation:
     """Tensionless spring-dashpots at the two bottom corners (docs: theory/foundation).
+
+    It carries a :class:`~fastrock.RigidBlock` or a :class:`~fastrock.RigidBody` (an asymmetric
+    one with a level base: its corners at -b1 and b2 from the base point below its centre of
+    mass, which stays horizontally fixed; it starts at rest at its static tilt, see
+    :meth:`initial_state`).  For an asymmetric body ``b`` in the formulas below is the mean
+    half-width (b1 + b2)/2: ``k_t = 2 k_v b^2`` is then the rocking stiffness with the vertical
+    motion condensed out (the springs' moment at fixed total force); ``omega`` is the rocking
+    mode's frequency of the coupled rocking and vertical vibration (:meth:`vibration`).
 
     Parameters
     ----------
@@ -176,8 +305,12 @@ class TwoSpringFoundation:
         """Corner springs giving rocking vibration ``omega`` [rad/s] with damping ratio ``zeta``.
 
         ``k_v = (omega^2 I_C + M g h) / (2 b^2)``, ``c_v = 2 zeta omega I_C / (2 b^2)``.
+        An asymmetric body: ``k_v`` makes ``omega`` its rocking mode's frequency (see
+        :meth:`vibration`), ``c_v`` as above.
         """
         blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, True)
+        if blk.skew != 0.0:
+            return cls(k_v=_coupled_k_v(blk, omega), c_v=c_t / (2 * blk.b ** 2))
         return cls(k_v=k_t / (2 * blk.b ** 2), c_v=c_t / (2 * blk.b ** 2))
 
     def rotational(self, body, mass=1.0):
@@ -187,9 +320,18 @@ class TwoSpringFoundation:
 
     def vibration(self, body, mass=1.0):
         """``(omega [rad/s], zeta)`` of small rocking vibration in full contact (P-Delta kept);
-        NaN if ``k_t <= M g h`` (unstable on the foundation)."""
+        NaN if ``k_t <= M g h`` (unstable on the foundation).
+
+        An asymmetric body's springs couple rocking and vertical motion (the stiffness term
+        ``-2 k_v c`` between y and q, c = (b2 - b1)/2): ``omega`` is then the eigenfrequency of the
+        two-degree-of-freedom vibration about its rest tilt whose mode turns into pure rocking as
+        c -> 0, and ``zeta = c_t / (2 I_C omega)`` as for the block."""
         k_t, c_t = self.rotational(body, mass)
-        return _vibration_of(block_inertia(body, mass), k_t, c_t, True)
+        blk = block_inertia(body, mass)
+        if blk.skew != 0.0:
+            om = _coupled_omega(blk, self.k_v)
+            return om, c_t / (2.0 * blk.I_C * om)
+        return _vibration_of(blk, k_t, c_t, True)
 
     def uplift_rotation(self, body, mass=1.0):
         """Static lift-off rotation ``theta_y = M g / (2 k_v b)`` [rad] (small angles)."""
@@ -210,7 +352,15 @@ class TwoSpringFoundation:
 
         On a slope (``ground``) the block starts at rest in its static equilibrium: both
         corners compressed, ``y_c = -M g cos(phi) / (2 k_v)`` and the tilt q of
-        ``k_v b^2 sin(2q) = M g h sin(q + phi)`` (downhill, q > 0)."""
+        ``k_v b^2 sin(2q) = M g h sin(q + phi)`` (downhill, q > 0).
+
+        An asymmetric body (``blk.skew`` = c != 0) released from rest upright (theta0 =
+        dtheta0 = 0), or on a slope, starts at rest in its static equilibrium: the tilt q of
+        ``cos(q) (2 k_v b^2 sin(q) + c M G) = M g h sin(q + phi)`` (G = g cos(phi); toward its
+        nearer corner) and ``y_c = c sin(q) - M G / (2 k_v)``; any other release starts in
+        vertical equilibrium at theta0."""
+        if blk.skew != 0.0:
+            return self._body_initial_state(blk, theta0, dtheta0, ground)
         if _on_slope(ground):
             _check_slope_release(ground, theta0, dtheta0)
             kb2 = self.k_v * blk.b ** 2
@@ -224,6 +374,54 @@ class TwoSpringFoundation:
         lift = blk.b * math.sin(abs(theta0))
         yc = -d_s if lift <= d_s else lift - 2 * d_s
         return np.array([yc, 0.0, theta0, dtheta0], float)
+
+    def _body_initial_state(self, blk, theta0, dtheta0, ground):
+        """initial_state of an asymmetric body (corners at x_s = s b + c, c = blk.skew)."""
+        a, c = blk.b, blk.skew
+        if _on_slope(ground) or (theta0 == 0.0 and dtheta0 == 0.0):
+            phi = ground.slope if _on_slope(ground) else 0.0
+            if _on_slope(ground):
+                _check_slope_release(ground, theta0, dtheta0)
+            q = self.rest_tilt(blk, phi)
+            d_s = blk.M * blk.g * math.cos(phi) / (2 * self.k_v)
+            return np.array([c * math.sin(q) - d_s, 0.0, q, 0.0], float)
+        d_s = blk.M * blk.g / (2 * self.k_v)
+        sq = math.sin(theta0)
+        if a * abs(sq) <= d_s:          # both corners carry it
+            yc = c * sq - d_s
+        else:                           # the lower corner alone
+            yc = (math.copysign(a, sq) + c) * sq - 2 * d_s
+        return np.array([yc, 0.0, theta0, dtheta0], float)
+
+    def rest_tilt(self, blk, slope=0.0):
+        """Static rotation q [rad] of the body at rest on both corners (Newton from q = 0):
+        ``cos(q) (2 k_v b^2 sin(q) + c M G) = M g h sin(q + slope)``, G = g cos(slope),
+        c = (b2 - b1)/2 (q = 0 on level ground for a symmetric block).  Refused, naming
+        ``k_v``, if no stable rest with both corners on their springs lies between -alpha1 and
+        alpha2."""
+        a, c, M, g, h = blk.b, blk.skew, blk.M, blk.g, blk.h
+        G = g * math.cos(slope)
+        k2 = 2.0 * self.k_v * a * a
+        q = 0.0
+        for _ in range(60):
+            sq, cq = math.sin(q), math.cos(q)
+            f = cq * (k2 * sq + c * M * G) - M * g * h * math.sin(q + slope)
+            df = k2 * math.cos(2.0 * q) - c * M * G * sq - M * g * h * math.cos(q + slope)
+            if df <= 0.0:
+                break
+            step = f / df
+            q -= step
+            if abs(step) <= 1e-15 * max(1.0, abs(q)):
+                stable = (k2 * math.cos(2.0 * q) - c * M * G * math.sin(q)
+                          - M * g * h * math.cos(q + slope)) > 0.0
+                on_springs = a * abs(math.sin(q)) < M * G / (2.0 * self.k_v)
+                if stable and on_springs and -math.atan2(blk.b1, h) < q < math.atan2(blk.b2, h):
+                    return q
+                break
+        where = f"slope = {slope:.6g} rad: " if slope else ""
+        raise ValueError(f"k_v = {self.k_v:.6g} N/m: {where}the body has no stable rest on both corner "
+                         f"springs (b1 = {blk.b1:.6g} m, b2 = {blk.b2:.6g} m, h = {h:.6g} m, M = {M:.6g} kg): "
+                         "its weight's moment about the base centre lifts a corner; stiffer springs hold it")
 
 
 @dataclass(frozen=True)
@@ -255,19 +453,20 @@ class SwitchingFoundation:
     def from_vibration(cls, body, omega, zeta=0.0, e_f=1.0, mass=1.0):
         """Contact phase with vibration ``omega`` [rad/s] and damping ratio ``zeta``:
         ``k_t = omega^2 I_C + M g h``, ``c_t = 2 zeta omega I_C``."""
-        _blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, True)
+        _blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, True, cls)
         return cls(k_t=k_t, c_t=c_t, e_f=e_f)
 
     def vibration(self, body, mass=1.0):
         """``(omega [rad/s], zeta)`` of the contact phase (P-Delta kept)."""
-        return _vibration_of(block_inertia(body, mass), self.k_t, self.c_t, True)
+        return _vibration_of(_symmetric_only(block_inertia(body, mass), self), self.k_t, self.c_t, True)
 
     def uplift_rotation(self, body, mass=1.0):
         """``theta_y = M g b / k_t`` [rad]."""
-        blk = block_inertia(body, mass)
+        blk = _symmetric_only(block_inertia(body, mass), self)
         return blk.M * blk.g * blk.b / self.k_t
 
     def fill_par(self, par, blk):
+        _symmetric_only(blk, self)
         par[P_KT] = self.k_t
         par[P_CT] = self.c_t
         par[P_EF] = self.e_f
@@ -310,13 +509,14 @@ class LinearVibration:
     @classmethod
     def from_vibration(cls, body, omega, zeta=0.0, mass=1.0):
         """``k_t = omega^2 I_C``, ``c_t = 2 zeta omega I_C``."""
-        _blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, False)
+        _blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, False, cls)
         return cls(k_t=k_t, c_t=c_t)
 
     def vibration(self, body, mass=1.0):
-        return _vibration_of(block_inertia(body, mass), self.k_t, self.c_t, False)
+        return _vibration_of(_symmetric_only(block_inertia(body, mass), self), self.k_t, self.c_t, False)
 
     def fill_par(self, par, blk):
+        _symmetric_only(blk, self)
         par[P_KT] = self.k_t
         par[P_CT] = self.c_t
         par[P_THETA_Y] = np.inf
@@ -334,14 +534,22 @@ FOUNDATIONS = (TwoSpringFoundation, SwitchingFoundation, LinearVibration)
 
 
 def foundation_par(body, foundation, mass=1.0):
-    """Parameter vector of a block on a foundation (registry ``build_par``)."""
+    """Parameter vector of a block on a foundation (registry ``build_par``); an asymmetric
+    RigidBody's rigid entries hold its right side (alpha2, p2, e21), as in the rigid_body
+    model's, and P_ALPHA_LEFT its alpha1."""
     blk = block_inertia(body, mass)
     par = np.zeros(N_PAR)
-    par[0] = body.alpha          # rigid layout: alpha, p, e, g, theta_over
-    par[1] = body.p
-    par[2] = body.e
+    if blk.skew != 0.0:
+        par[0], par[1], par[2] = body.alpha2, body.p2, body.e21
+        par[P_ALPHA_LEFT] = body.alpha1
+    else:
+        par[0] = body.alpha      # rigid layout: alpha, p, e, g, theta_over
+        par[1] = body.p
+        par[2] = body.e
+        par[P_ALPHA_LEFT] = body.alpha
     par[3] = body.g
     par[4] = body.theta_over
+    par[P_B_SKEW] = blk.skew
     par[P_MASS] = blk.M
     par[P_I_G] = blk.I_G
     par[P_B] = blk.b

@@ -8,6 +8,7 @@ import pandas as pd
 from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.model.bodies import RigidBlock
+from fastrock.model.rigid_body import RigidBody
 from fastrock.running.outcomes import outcome_of, status_of
 from fastrock.running.result import SimulationResult, ground_at, events_frame, metrics_dict, run_inputs
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
@@ -26,8 +27,8 @@ CONTACT_NAMES = {L.MODE_REST: "contact", L.MODE_ROCK: "rock", L.MODE_FLIGHT: "fl
 def foundation_spec(body, foundation, mass=1.0):
     """KernelSpec (registry entry, parameter vector) and the block's mass properties."""
     from fastrock.running.registry import select
-    if not isinstance(body, RigidBlock):
-        raise ValueError(f"foundation models carry a RigidBlock, got {type(body).__name__}")
+    if not isinstance(body, (RigidBlock, RigidBody)):
+        raise ValueError(f"foundation models carry a RigidBlock or RigidBody, got {type(body).__name__}")
     spec = select(body, foundation=foundation, mass=mass)
     return spec, block_inertia(body, mass)
 
@@ -57,8 +58,11 @@ def _check_release(body, theta0, allow_overturn):
     if abs(theta0) >= body.theta_over:
         raise ValueError(f"theta0 must satisfy |theta0| < theta_over = {body.theta_over}, "
                          f"got {theta0}")
-    if abs(theta0) >= body.alpha and not allow_overturn:
-        raise ValueError(f"theta0 = {theta0} rad is at or beyond alpha = {body.alpha} rad: a "
+    alpha = body.alpha
+    if isinstance(body, RigidBody):         # the side it leans to
+        alpha = body.alpha2 if theta0 >= 0.0 else body.alpha1
+    if abs(theta0) >= alpha and not allow_overturn:
+        raise ValueError(f"theta0 = {theta0} rad is at or beyond alpha = {alpha} rad: a "
                          f"release there overturns; pass allow_overturn=True to simulate it")
 
 
@@ -70,13 +74,16 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical
 
     Parameters
     ----------
-    body : RigidBlock
-        Block with known ``b`` and ``h`` (``RigidBlock.rectangle`` / ``from_inertia``).
+    body : RigidBlock or RigidBody
+        Block with known ``b`` and ``h`` (``RigidBlock.rectangle`` / ``from_inertia``), or a
+        RigidBody (an asymmetric one on ``TwoSpringFoundation`` only, with a level base; it
+        starts at rest at its static tilt unless theta0 or dtheta0 is given).
     foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration
     excitation, vertical : Pulse, SampledMotion or GroundMotion, optional
         Horizontal and vertical ground acceleration (None: free motion).
     mass : float
-        Block mass ``M`` [kg] (default 1).
+        Block mass ``M`` [kg] (default 1); a RigidBody's inertia is scaled to it (its radius of
+        gyration kept).
     theta0, dtheta0 : float
         Initial rotation [rad] and angular velocity [rad/s]. The two-spring block starts
         in vertical equilibrium on the corner(s) that touch (see
@@ -94,7 +101,8 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical
         ``theta_dot`` [rad/s], ``theta_ratio`` (theta/alpha), ``contact`` ("contact": full
         contact, "rock": on one corner, "flight"), ``pivot`` (+1/-1 corner carrying the
         block while it rocks, 0 in full contact), ``lift_off`` (bool, contact != "contact");
-        two-spring only: ``y`` [m] (vertical displacement of the base centre), ``y_dot``
+        two-spring only: ``y`` [m] (vertical displacement of the base centre; of the base
+        point below the centre of mass for an asymmetric body), ``y_dot``
         [m/s], ``force_right``, ``force_left`` [N] (corner forces). At every event the history
         holds two rows with the same ``t`` (before and after the transition); zero crossings
         of ``theta`` are events, so the history holds them exactly.
@@ -136,8 +144,9 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical
         cols["y"] = Y[:, 0]
         cols["y_dot"] = Y[:, 1]
         for side, slot, name in ((1.0, D_RIGHT, "force_right"), (-1.0, D_LEFT, "force_left")):
-            d = -(Y[:, 0] - side * blk.b * np.sin(th))
-            dd = -(Y[:, 1] - side * blk.b * np.cos(th) * Y[:, 3])
+            x = side * blk.b + blk.skew         # the corner from the point below the CM
+            d = -(Y[:, 0] - x * np.sin(th))
+            dd = -(Y[:, 1] - x * np.cos(th) * Y[:, 3])
             cols[name] = np.where(D[:, slot] != 0, foundation.k_v * d + foundation.c_v * dd,
                                   0.0)
     history = pd.DataFrame(cols)

@@ -175,19 +175,25 @@ def contact_par(body, friction, wall=None):
 LEVEL_BASE_RTOL = 1e-9
 
 
+def level_base_height(body, needs, why):
+    """h of a RigidBody with a level base (h1 = h2 to LEVEL_BASE_RTOL), else a ValueError saying
+    what ``needs`` it and ``why``."""
+    h1, h2 = body.h1, body.h2
+    if abs(h1 - h2) > LEVEL_BASE_RTOL * max(h1, h2):
+        raise ValueError(f"h1 = {h1:.6g} m and h2 = {h2:.6g} m differ: {needs} a level base (h1 = h2; {why}); "
+                         f"a RigidBody from a polygon or a mesh rests on its lowest facet and has one. "
+                         f"Without those effects it runs in the rocking model")
+    return 0.5 * (h1 + h2)
+
+
 def _contact_body_geometry(par, body, wall):
     """The body entries of the contact model for an asymmetric RigidBody: each pivot its own
     half-width, alpha and impact restitution (P_* for the right pivot as in ``rigid_body_par``,
     C_*_NEG for the left).  The base must be level (h1 = h2).  With a wall, the wall-side face is
     taken vertical above its pivot, up to the top of the outline."""
     from fastrock.kernels import layout as K
-    h1, h2 = body.h1, body.h2
-    if abs(h1 - h2) > LEVEL_BASE_RTOL * max(h1, h2):
-        raise ValueError(f"h1 = {h1:.6g} m and h2 = {h2:.6g} m differ: friction=, wall= and flight need a "
-                         f"level base (h1 = h2; the contact model's flat contact and sliding are on one "
-                         f"line through both pivots); a RigidBody from a polygon or a mesh rests on its "
-                         f"lowest facet and has one. Without those effects it runs in the rocking model")
-    h = 0.5 * (h1 + h2)
+    h = level_base_height(body, "friction=, wall= and flight need",
+                          "the contact model's flat contact and sliding are on one line through both pivots")
     par[K.P_ALPHA] = body.alpha2
     par[K.P_P] = body.p2
     par[K.P_E] = body.e21
