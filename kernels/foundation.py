@@ -74,13 +74,9 @@ from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
 from .rigid import (P_ALPHA, P_G, P_P, P_THETA_OVER,
                     overturned, passed_alpha, theta_ddot, track_rotation)
 
-from .layout import (N_PAR_FOUNDATION as N_PAR, P_B, P_CT, P_CV,  # noqa: E402,F401
-                     P_EF, P_H, P_I_0, P_I_C, P_I_G, P_KT, P_KV, P_MASS,
-                     P_THETA_Y)
-
-# ---- asymmetric body: two free slots of N_PAR_FOUNDATION (kernels/layout.py) --
-P_B_SKEW = 22       # m, c = (b2 - b1)/2: base centre right of the point below the CM
-P_ALPHA_LEFT = 23   # rad, alpha of the left corner's side (theta < 0)
+from .layout import (N_PAR_FOUNDATION as N_PAR, P_ALPHA_LEFT,  # noqa: E402,F401
+                     P_B, P_B_SKEW, P_CT, P_CV, P_EF, P_H, P_I_0, P_I_C, P_I_G,
+                     P_KT, P_KV, P_MASS, P_THETA_Y)
 
 # ---- discrete state (model-specific use of the free slots) -----------------
 D_SIDE = 5       # sign of the rotation for the zero-crossing event (0: none yet)

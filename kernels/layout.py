@@ -238,6 +238,8 @@ P_EF = 18           # -, restitution at re-contact (switching)
 P_THETA_Y = 19      # rad, M g b / k_t (switching)
 P_I_C = 20          # kg m^2, I_G + M h^2 (inertia about the base centre)
 P_I_0 = 21          # kg m^2, I_G + M R^2 (inertia about a corner)
+P_B_SKEW = 22       # m, c = (b2 - b1)/2: base centre right of the point below the CM (0: symmetric)
+P_ALPHA_LEFT = 23   # rad, alpha of the left corner's side (theta < 0; P_ALPHA if symmetric)
 N_PAR_FOUNDATION = 24
 
 # planar rigid body with contact points (kernels.contact), after the rigid

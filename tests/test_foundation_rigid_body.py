@@ -39,19 +39,19 @@ def pulse(sign, amplitude=3.0, frequency=2.0):
 
 # ------------------------------------------------------------------------------ layout
 def test_parameter_slots_match_the_kernel_and_are_free():
-    assert (F.P_B_SKEW, F.P_ALPHA_LEFT) == (K.P_B_SKEW, K.P_ALPHA_LEFT)
+    assert (F.P_B_SKEW, F.P_ALPHA_LEFT) == (K.P_B_SKEW, K.P_ALPHA_LEFT) == (L.P_B_SKEW, L.P_ALPHA_LEFT)
     used = {getattr(L, n) for n in ("P_MASS", "P_I_G", "P_B", "P_H", "P_KV", "P_CV", "P_KT", "P_CT",
                                     "P_EF", "P_THETA_Y", "P_I_C", "P_I_0")}
     assert max(used) < K.P_B_SKEW < K.P_ALPHA_LEFT < L.N_PAR_FOUNDATION
-    spec, blk = foundation_spec(ASYM, TwoSpringFoundation(1e4), 2.0)
+    spec, blk = foundation_spec(ASYM, TwoSpringFoundation(1e4))
     par = spec.par
     assert spec.name == "two_spring"
     assert par[K.P_B] - par[K.P_B_SKEW] == pytest.approx(0.15, rel=1e-15)
     assert par[K.P_B] + par[K.P_B_SKEW] == pytest.approx(0.3, rel=1e-15)
     assert (par[L.P_ALPHA], par[K.P_ALPHA_LEFT]) == (ASYM.alpha2, ASYM.alpha1)
-    # the mass is the foundation's, the inertia the body's radius of gyration
-    assert blk.M == 2.0 and blk.I_G == pytest.approx(2.0 * 0.12, rel=1e-15)
-    assert blk.I_C == pytest.approx(2.0 * (0.12 + 0.8 ** 2), rel=1e-15)
+    # the body's own mass and inertia
+    assert blk.M == 1.0 and blk.I_G == 0.12
+    assert blk.I_C == pytest.approx(0.12 + 0.8 ** 2, rel=1e-15)
 
 
 # ----------------------------------------------------------------- equations of motion
@@ -82,7 +82,7 @@ def test_accelerations_match_a_sympy_lagrangian_with_unequal_corners():
     rng = np.random.default_rng(17)
     fnd = TwoSpringFoundation(k_v=3.0e4, c_v=40.0)
     for body in (ASYM, MIRROR, RigidBody(mass=3.0, inertia=0.5, b1=0.4, h1=1.1, b2=0.25, h2=1.1)):
-        spec, blk = foundation_spec(body, fnd, 2.5)
+        spec, blk = foundation_spec(body, fnd)       # each body carries its own mass
         for _ in range(15):
             state = np.array([rng.normal(0, 1e-3), rng.normal(0, 0.01), rng.uniform(-0.4, 0.4),
                               rng.normal(0, 1.0)])
@@ -417,3 +417,30 @@ def test_small_vibration_in_the_rocking_mode_has_the_given_omega(omega):
     assert code == L.SAFE_NO_UPLIFT
     # measured: at most 3.0e-5 amp (omega = 10), shrinking with the amplitude (nonlinearity)
     np.testing.assert_allclose(Y[:, 2] - rest[2], amp * np.cos(omega * t), rtol=0, atol=1e-4 * amp)
+
+
+# --------------------------------------------------------------------------- mass
+def test_a_rigid_body_carries_its_own_mass_onto_the_foundation():
+    """A foundation's stiffnesses are absolute: a 50 kg body on k_v runs as 50 kg (not the 1 kg
+    default of a RigidBlock), a symmetric one as its block with mass=50, and a mass= that
+    contradicts the body's own is refused."""
+    wedge = RigidBody.from_polygon([(0, 0), (0.45, 0), (0.45, 1.6), (0.15, 1.6)], mass=50.0)
+    square = RigidBody.from_polygon([(0, 0), (0.4, 0), (0.4, 1.6), (0, 1.6)], mass=50.0)
+    fnd = TwoSpringFoundation(k_v=2.0e5, c_v=300.0)
+    for body in (wedge, square):
+        a = fr.simulate(body, pulse(1, 2.0), foundation=fnd, duration=2.0)
+        b = fr.simulate(body, pulse(1, 2.0), foundation=fnd, duration=2.0, mass=50.0)
+        np.testing.assert_array_equal(a.history[["theta", "y"]].to_numpy(), b.history[["theta", "y"]].to_numpy())
+        # static settlement of a centred weight: y = -M g / (2 k_v) (the square), near it (the wedge)
+        assert foundation_spec(body, fnd)[1].M == 50.0
+        with pytest.raises(ValueError, match=r"mass = 1\.0 kg differs from the RigidBody's own mass 50"):
+            fr.simulate(body, pulse(1, 2.0), foundation=fnd, mass=1.0)
+    block = square.to_block()
+    c = fr.simulate(block, pulse(1, 2.0), foundation=fnd, duration=2.0, mass=50.0)
+    d = fr.simulate(square, pulse(1, 2.0), foundation=fnd, duration=2.0)
+    np.testing.assert_array_equal(c.history[["theta", "y"]].to_numpy(), d.history[["theta", "y"]].to_numpy())
+    y_rest = fnd.initial_state(block_inertia(square), 0.0, 0.0)[0]
+    assert y_rest == pytest.approx(-50.0 * square.g / (2 * fnd.k_v), rel=1e-12)
+    # the 1 kg block on the same springs is another body altogether
+    e = fr.simulate(block, pulse(1, 2.0), foundation=fnd, duration=2.0)
+    assert not np.array_equal(e.history["y"].to_numpy()[:50], d.history["y"].to_numpy()[:50])

@@ -34,7 +34,8 @@ def test_readme_lists_the_refused_combinations():
     assert "**Not available yet**" in text
     for phrase in ("a `FlexibleBody` with `wall=` and `friction=` together",
                    "`foundation=` together with `wall=` or `friction=`",
-                   "a `FlexibleBody` or an asymmetric `RigidBody` on a foundation",
+                   "a `FlexibleBody` on a foundation, and an asymmetric `RigidBody` on the switching or "
+                   "linear foundation (it runs on `TwoSpringFoundation`)",
                    "a wall at gap 0 or lower than the body",
                    "an asymmetric body whose two pivots are not level"):
         assert phrase in text, phrase

@@ -8,6 +8,7 @@ from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.model.friction import Friction
 from fastrock.model.ground import as_ground
+from fastrock.model.rigid_body import RigidBody
 from fastrock.running import registry
 from fastrock.running.outcomes import STATUS, outcome_of, status_of, warn_unstable
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
@@ -116,7 +117,7 @@ def _signs(sign):
 
 
 def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, pulse="one-sine",
-                         wall=None, friction=None, foundation=None, ground=None, mass=1.0, vertical=None,
+                         wall=None, friction=None, foundation=None, ground=None, mass=None, vertical=None,
                          solver=None,
                          rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
                          early_exit=True, chunk_size=None, progress=True, boundary_check=False,
@@ -157,9 +158,10 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         Sloping ground, the same in every run; None: level ground.  The
         ratios keep their level-ground meaning (a_p / (g tan alpha)); sign
         +1 pulses start toward +x, downhill.
-    mass : float
+    mass : float, optional
         Block mass [kg] with ``foundation`` (the foundation's stiffnesses
-        are absolute).
+        are absolute): a RigidBody carries its own mass (a different
+        ``mass`` is refused), a RigidBlock 1 kg unless given.
     vertical : Pulse, SampledMotion or GroundMotion, optional
         Vertical ground acceleration, the same in every run (effective
         gravity G = g + a_v); each run lasts until both excitations end,
@@ -194,6 +196,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     >>> list(df.outcome)        # a_p/(g tan alpha) 1, 3, 6 at omega_p/p = 1, then at 4
     ['safe', 'mode2', 'mode2', 'safe', 'mode1', 'mode2']
     """
+    mass = registry.carried_mass(body, foundation, mass)
     body = registry.model_body(body)
     solver = make_solver(solver, rtol, atol, dt)
     if kind is not None:
@@ -212,7 +215,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     if (freqs <= 0).any():
         raise ValueError("frequency_ratios must be > 0")
     amps, freqs = _to_ratios(body, amps, freqs, amplitude_unit, frequency_unit)
-    spec = registry.select(body, wall, friction, foundation, V.positive("mass", mass))
+    spec = registry.select(body, wall, friction, foundation, None if mass is None else V.positive("mass", mass))
     ground = as_ground(ground)
     if ground is not None:
         ground.check_scene(body, friction=friction, flexible=spec.flexible, foundation=foundation)
@@ -311,7 +314,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     attrs = dict(kernel=spec.name, alpha=body.alpha, p=body.p, e=body.e, pulse=pulse, solver=solver.name,
                  amplitude_unit=amplitude_unit, frequency_unit=frequency_unit,
                  slope=ground.slope if ground is not None else 0.0)
-    if spec.model.body == "rigid_body":      # an asymmetric body, in any of its models
+    if isinstance(body, RigidBody) and not body.is_symmetric:   # in any of its models
         attrs.update(alpha1=body.alpha1, alpha2=body.alpha2, p1=body.p1, p2=body.p2, e12=body.e12,
                      e21=body.e21, ratio_side=body.smaller_side)
     if out is not None:

@@ -22,7 +22,7 @@ def _shape_body(args):
              if v is not None]
     if clash:
         raise ValueError(f"{given[0]} defines the body; it takes no {', '.join(clash)}")
-    mass = {"density": args.density} if args.density is not None else {"mass": args.mass}
+    mass = {"density": args.density} if args.density is not None else {"mass": 1.0 if args.mass is None else args.mass}
     if args.outline is not None:
         from fastrock.io.outline import read_outline
         if args.density is not None:
@@ -153,8 +153,8 @@ def _add_body_options(p):
                     help="its small-amplitude rocking vibration in full contact [rad/s] (no default: "
                          "required with --foundation)")
     fd.add_argument("--foundation-zeta", type=float, default=0.0, help="its damping ratio [-] (default 0)")
-    fd.add_argument("--mass", type=float, default=1.0,
-                    help="body mass [kg] (foundations; a shape without --density) (default 1)")
+    fd.add_argument("--mass", type=float, default=None,
+                    help="body mass [kg]: a block on a foundation, or a shape without --density (default 1; a shape with --density has its own)")
     f = p.add_argument_group("friction (sliding)")
     f.add_argument("--mu-s", type=float, help="static friction coefficient mu_s [-] (default: no sliding)")
     f.add_argument("--mu-k", type=float, help="kinetic friction coefficient mu_k [-] (default mu_s)")

@@ -23,8 +23,8 @@ block's ``p``: ``I_0 = M g R / p^2`` about a corner, ``I_G = I_0 - M R^2``,
 An asymmetric :class:`fastrock.RigidBody` (b1 != b2, level base h1 = h2 = h) stands on the
 two-spring foundation only: its corners at ``x = -b1`` and ``x = b2`` from the base point below
 its centre of mass, which the model holds horizontally (the base centre of a symmetric block).
-Its mass on the foundation is ``M`` as for a block, its inertia ``I_G = M (inertia / mass)`` of
-the body (its radius of gyration). At rest it tilts toward its nearer corner (the corners share
+A :class:`fastrock.RigidBody` (symmetric or not) carries its own ``mass`` and ``inertia`` onto
+the foundation (a ``mass`` argument that differs is refused: the stiffnesses are absolute). At rest it tilts toward its nearer corner (the corners share
 the weight unequally); ``b`` below is then the mean half-width ``(b1 + b2)/2``.
 
 Small-amplitude vibration in full contact (both models, P-Delta kept):
@@ -50,15 +50,14 @@ from fastrock import _validate as V
 from fastrock.model.bodies import RigidBlock
 from fastrock.model.rigid_body import RigidBody
 # the kernels' parameter layout (kernels/layout.py imports no kernel)
-from fastrock.kernels.layout import (N_PAR_FOUNDATION as N_PAR, P_B, P_CT, P_CV, P_EF, P_H, P_I_0,
-                                     P_I_C, P_I_G, P_KT, P_KV, P_MASS, P_THETA_Y)
+from fastrock.kernels.layout import (N_PAR_FOUNDATION as N_PAR, P_ALPHA_LEFT, P_B, P_B_SKEW, P_CT,
+                                     P_CV, P_EF, P_H, P_I_0, P_I_C, P_I_G, P_KT, P_KV, P_MASS,
+                                     P_THETA_Y)
 
-# discrete-state slots of the two-spring model and its asymmetric-body parameters (kept here as
-# plain ints, checked against the kernel in the tests)
+# discrete-state slots of the two-spring model (kept here as plain ints, checked against the
+# kernel in the tests)
 D_RIGHT = 6
 D_LEFT = 7
-P_B_SKEW = 22       # (b2 - b1)/2 [m]
-P_ALPHA_LEFT = 23   # alpha of the left corner's side [rad]
 
 
 # ------------------------------------------------------------------------------ body
@@ -91,8 +90,28 @@ class BlockInertia:
         return self.b + self.skew
 
 
-def block_inertia(body, mass=1.0):
-    """Mass properties of ``body`` with mass ``mass`` [kg].
+def carried_mass(body, mass=None):
+    """The mass [kg] a foundation carries: a :class:`RigidBody`'s own ``mass``, and for a
+    :class:`RigidBlock` (which has no mass) ``mass``, default 1 kg.
+
+    Raises
+    ------
+    ValueError
+        Naming ``mass`` if it is not > 0, or if it is given for a RigidBody and differs from
+        the body's own mass (the foundation's stiffnesses are absolute: a second mass would
+        silently change the response).
+    """
+    if isinstance(body, RigidBody):
+        own = float(body.mass)
+        if mass is not None and not math.isclose(V.positive("mass", mass), own, rel_tol=1e-12):
+            raise ValueError(f"mass = {mass!r} kg differs from the RigidBody's own mass {own!r} kg: "
+                             f"a RigidBody carries its own mass onto a foundation (leave mass unset)")
+        return own
+    return 1.0 if mass is None else V.positive("mass", mass)
+
+
+def block_inertia(body, mass=None):
+    """Mass properties of ``body`` with mass ``mass`` [kg] (:func:`carried_mass`).
 
     ``I_0 = M g R / p^2`` (from the block's ``p``), ``I_G = I_0 - M R^2``, ``I_C = I_G + M h^2``.
 
@@ -105,6 +124,7 @@ def block_inertia(body, mass=1.0):
         If the body is not a :class:`RigidBlock` with known ``b`` and ``h`` or a
         :class:`RigidBody` with a level base, or its ``p`` implies ``I_0 < M R^2``.
     """
+    mass = carried_mass(body, mass)
     if isinstance(body, RigidBody):
         if body.is_symmetric:
             body = body.to_block()
@@ -135,8 +155,8 @@ def _body_inertia(body, mass):
     from fastrock.running.models import level_base_height
     h = level_base_height(body, "foundation= needs",
                           "the foundation's corner springs stand on one line through both pivots")
-    M = V.positive("mass", mass)
-    I_G = M * (body.inertia / body.mass)
+    M = mass
+    I_G = float(body.inertia)
     R = math.hypot(body.b2, h)
     return BlockInertia(M=M, b=0.5 * (body.b1 + body.b2), h=h, R=R, I_0=I_G + M * R * R, I_G=I_G,
                         I_C=I_G + M * h * h, g=float(body.g), skew=0.5 * (body.b2 - body.b1))
@@ -301,7 +321,7 @@ class TwoSpringFoundation:
         V.non_negative("c_v", self.c_v)
 
     @classmethod
-    def from_vibration(cls, body, omega, zeta=0.0, mass=1.0):
+    def from_vibration(cls, body, omega, zeta=0.0, mass=None):
         """Corner springs giving rocking vibration ``omega`` [rad/s] with damping ratio ``zeta``.
 
         ``k_v = (omega^2 I_C + M g h) / (2 b^2)``, ``c_v = 2 zeta omega I_C / (2 b^2)``.
@@ -313,12 +333,12 @@ class TwoSpringFoundation:
             return cls(k_v=_coupled_k_v(blk, omega), c_v=c_t / (2 * blk.b ** 2))
         return cls(k_v=k_t / (2 * blk.b ** 2), c_v=c_t / (2 * blk.b ** 2))
 
-    def rotational(self, body, mass=1.0):
+    def rotational(self, body, mass=None):
         """Small-rotation rotational stiffness and damping ``(k_t, c_t) = 2 b^2 (k_v, c_v)``."""
         b = block_inertia(body, mass).b
         return 2 * self.k_v * b * b, 2 * self.c_v * b * b
 
-    def vibration(self, body, mass=1.0):
+    def vibration(self, body, mass=None):
         """``(omega [rad/s], zeta)`` of small rocking vibration in full contact (P-Delta kept);
         NaN if ``k_t <= M g h`` (unstable on the foundation).
 
@@ -333,7 +353,7 @@ class TwoSpringFoundation:
             return om, c_t / (2.0 * blk.I_C * om)
         return _vibration_of(blk, k_t, c_t, True)
 
-    def uplift_rotation(self, body, mass=1.0):
+    def uplift_rotation(self, body, mass=None):
         """Static lift-off rotation ``theta_y = M g / (2 k_v b)`` [rad] (small angles)."""
         blk = block_inertia(body, mass)
         return blk.M * blk.g / (2 * self.k_v * blk.b)
@@ -450,17 +470,17 @@ class SwitchingFoundation:
         V.in_closed("e_f", self.e_f, 0.0, 1.0)
 
     @classmethod
-    def from_vibration(cls, body, omega, zeta=0.0, e_f=1.0, mass=1.0):
+    def from_vibration(cls, body, omega, zeta=0.0, e_f=1.0, mass=None):
         """Contact phase with vibration ``omega`` [rad/s] and damping ratio ``zeta``:
         ``k_t = omega^2 I_C + M g h``, ``c_t = 2 zeta omega I_C``."""
         _blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, True, cls)
         return cls(k_t=k_t, c_t=c_t, e_f=e_f)
 
-    def vibration(self, body, mass=1.0):
+    def vibration(self, body, mass=None):
         """``(omega [rad/s], zeta)`` of the contact phase (P-Delta kept)."""
         return _vibration_of(_symmetric_only(block_inertia(body, mass), self), self.k_t, self.c_t, True)
 
-    def uplift_rotation(self, body, mass=1.0):
+    def uplift_rotation(self, body, mass=None):
         """``theta_y = M g b / k_t`` [rad]."""
         blk = _symmetric_only(block_inertia(body, mass), self)
         return blk.M * blk.g * blk.b / self.k_t
@@ -507,12 +527,12 @@ class LinearVibration:
         V.non_negative("c_t", self.c_t)
 
     @classmethod
-    def from_vibration(cls, body, omega, zeta=0.0, mass=1.0):
+    def from_vibration(cls, body, omega, zeta=0.0, mass=None):
         """``k_t = omega^2 I_C``, ``c_t = 2 zeta omega I_C``."""
         _blk, k_t, c_t = _rotational_from_vibration(body, omega, zeta, mass, False, cls)
         return cls(k_t=k_t, c_t=c_t)
 
-    def vibration(self, body, mass=1.0):
+    def vibration(self, body, mass=None):
         return _vibration_of(_symmetric_only(block_inertia(body, mass), self), self.k_t, self.c_t, False)
 
     def fill_par(self, par, blk):
@@ -533,7 +553,7 @@ class LinearVibration:
 FOUNDATIONS = (TwoSpringFoundation, SwitchingFoundation, LinearVibration)
 
 
-def foundation_par(body, foundation, mass=1.0):
+def foundation_par(body, foundation, mass=None):
     """Parameter vector of a block on a foundation (registry ``build_par``); an asymmetric
     RigidBody's rigid entries hold its right side (alpha2, p2, e21), as in the rigid_body
     model's, and P_ALPHA_LEFT its alpha1."""

@@ -40,8 +40,9 @@ class RigidBody:
     symmetric: every model runs it as its equivalent :class:`RigidBlock`
     (:meth:`to_block`).  An asymmetric body runs in the two-sided rocking
     model (``simulate``, ``overturning_spectrum``) and, with walls, friction
-    or flight, in the contact model (a level base, h1 = h2); foundations
-    refuse it so far.  Its early decisions (``early_exit``)
+    or flight, in the contact model (a level base, h1 = h2), and on a
+    :class:`TwoSpringFoundation` (a level base; the switching and linear
+    foundation models refuse it), carrying its own mass.  Its early decisions (``early_exit``)
     hold per side: a run stops as safe once the energy is below the barrier
     of both the side it rocks on next and the other side after the impact,
     and a fall past alpha_k completes in closed form on that side.

@@ -62,8 +62,9 @@ def _as_scene(i, item):
 
 def _prepare(i, scene, early_exit):
     """Kernel inputs of one scene: (spec, y0, hdr, smp, opt)."""
+    mass = registry.carried_mass(scene.body, scene.foundation, scene.mass)
     body = registry.model_body(scene.body)      # a symmetric RigidBody runs as its RigidBlock
-    spec = registry.select(body, scene.wall, scene.friction, scene.foundation, scene.mass)
+    spec = registry.select(body, scene.wall, scene.friction, scene.foundation, mass)
     ground = as_ground(scene.ground)
     if ground is not None:
         ground.check_scene(body, friction=scene.friction, flexible=spec.flexible, foundation=scene.foundation)
@@ -76,7 +77,7 @@ def _prepare(i, scene, early_exit):
         ground.check_lift_off(body, X.channel_peak(hdr, smp), spec.name, vertical)
     if scene.foundation is not None:
         from fastrock.model.foundation import block_inertia
-        y0 = np.asarray(scene.foundation.initial_state(block_inertia(body, scene.mass), scene.theta0,
+        y0 = np.asarray(scene.foundation.initial_state(block_inertia(body, mass), scene.theta0,
                                                        scene.dtheta0, ground), float)
     else:
         y0 = initial_state(spec, body, scene.theta0, scene.dtheta0, scene.wall, ground)

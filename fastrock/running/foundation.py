@@ -24,7 +24,7 @@ CONTACT_NAMES = {L.MODE_REST: "contact", L.MODE_ROCK: "rock", L.MODE_FLIGHT: "fl
 
 
 
-def foundation_spec(body, foundation, mass=1.0):
+def foundation_spec(body, foundation, mass=None):
     """KernelSpec (registry entry, parameter vector) and the block's mass properties."""
     from fastrock.running.registry import select
     if not isinstance(body, (RigidBlock, RigidBody)):
@@ -66,7 +66,7 @@ def _check_release(body, theta0, allow_overturn):
                          f"release there overturns; pass allow_overturn=True to simulate it")
 
 
-def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical=None,
+def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertical=None,
                         theta0=0.0, dtheta0=0.0, duration=None, t_after=DEFAULT_T_AFTER,
                         t_eval=None, solver=None, rtol=None, atol=None, dt=None,
                         max_steps=None, allow_overturn=False, history_capacity=None, ground=None):
@@ -81,9 +81,9 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=1.0, vertical
     foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration
     excitation, vertical : Pulse, SampledMotion or GroundMotion, optional
         Horizontal and vertical ground acceleration (None: free motion).
-    mass : float
-        Block mass ``M`` [kg] (default 1); a RigidBody's inertia is scaled to it (its radius of
-        gyration kept).
+    mass : float, optional
+        Block mass ``M`` [kg] of a RigidBlock (default 1); a RigidBody carries its own mass and
+        inertia (a different ``mass`` is refused).
     theta0, dtheta0 : float
         Initial rotation [rad] and angular velocity [rad/s]. The two-spring block starts
         in vertical equilibrium on the corner(s) that touch (see

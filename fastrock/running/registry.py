@@ -184,7 +184,8 @@ def _body_kind(body):
 
 def model_body(body):
     """The body the models run: a symmetric :class:`~fastrock.RigidBody` is its
-    :class:`~fastrock.RigidBlock` (``RigidBody.to_block``); any other body as it is."""
+    :class:`~fastrock.RigidBlock` (``RigidBody.to_block``); any other body as it is.
+    A block has no mass: resolve a foundation's mass first (:func:`carried_mass`)."""
     from fastrock.model.rigid_body import RigidBody
     if isinstance(body, RigidBody) and body.is_symmetric:
         return body.to_block()
@@ -258,10 +259,21 @@ def lookup(body, effects):
     return model
 
 
-def select(body, wall=None, friction=None, foundation=None, mass=1.0):
-    """KernelSpec of the smallest model that runs this scene."""
+def carried_mass(body, foundation, mass):
+    """The block mass on a foundation (:func:`fastrock.model.foundation.carried_mass`: a
+    RigidBody's own); ``mass`` as it is without a foundation."""
+    if foundation is None:
+        return mass
+    from fastrock.model.foundation import carried_mass as on_foundation
+    return on_foundation(body, mass)
+
+
+def select(body, wall=None, friction=None, foundation=None, mass=None):
+    """KernelSpec of the smallest model that runs this scene (``mass``: the block
+    mass on a foundation, :func:`fastrock.model.foundation.carried_mass`)."""
     effects = scene_effects(wall, friction, foundation)
     model = lookup(body, effects)
+    mass = carried_mass(body, foundation, mass)    # before a symmetric RigidBody becomes its block
     return KernelSpec(model, model.build_par(model_body(body), effects, mass))
 
 

@@ -36,7 +36,7 @@ class Scene:
     friction: object = None
     foundation: object = None
     ground: object = None
-    mass: float = 1.0
+    mass: float | None = None
     theta0: float = 0.0
     dtheta0: float = 0.0
     duration: float | None = None
@@ -235,7 +235,7 @@ _FOUNDATION_KEYS = {
 def foundation_from_table(d, body):
     """[foundation] type = "two-spring" | "switching" | "linear", with either the model's own
     stiffnesses (k_v, c_v or k_t, c_t) or omega [rad/s] and zeta (``from_vibration``), plus
-    e_f (switching) and the block's mass [kg] (default 1)."""
+    e_f (switching) and the block's mass [kg] (default 1; a RigidBody carries its own)."""
     from fastrock.model import foundation as F
     kind = d.pop("type", None)
     if kind not in _FOUNDATION_KEYS:
@@ -244,7 +244,8 @@ def foundation_from_table(d, body):
     cls = getattr(F, cls_name)
     extra = {"e_f"} if kind == "switching" else set()
     d = only_keys(d, "foundation", own | {"omega", "zeta", "mass"} | extra)
-    mass = V.positive("mass", d.pop("mass", 1.0))
+    mass = d.pop("mass", None)
+    mass = None if mass is None else V.positive("mass", mass)
     if "omega" in d:
         if own & set(d) - extra:
             raise ValueError(f"[foundation]: give omega/zeta or {sorted(own - extra)}, not both")

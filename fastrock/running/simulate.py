@@ -56,7 +56,7 @@ def _history(hist, hdr, smp, spec, body):
 
 
 def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, foundation=None, ground=None,
-             mass=1.0,
+             mass=None,
              theta0=0.0, dtheta0=0.0, duration=None, t_after=DEFAULT_T_AFTER, t_eval=None, solver=None,
              rtol=None, atol=None, dt=None, early_exit=False, max_steps=None, record_breakpoints=None,
              history_capacity=None, resample_vertical=False):
@@ -83,15 +83,18 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         Coulomb friction (sliding and slide-rocking); None or mu_s = inf:
         no sliding degree of freedom at all.
     foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration, optional
-        A flexible foundation under a RigidBlock (rocking against vibration);
+        A flexible foundation under a RigidBlock or RigidBody (rocking against
+        vibration; an asymmetric body on TwoSpringFoundation only);
         the run is :func:`fastrock.simulate_foundation`'s, whose
         result documents the extra history columns.
     ground : Ground, optional
         Sloping ground (``Ground(slope=phi)``); None: level ground.  On a
         slope x and the slip d run along the surface, positive downhill,
         and the history's ``a_g``, ``a_v`` are the channels as given.
-    mass : float
-        Block mass [kg] with ``foundation``.
+    mass : float, optional
+        Block mass [kg] with ``foundation`` (its stiffnesses are absolute):
+        a RigidBody carries its own mass (a different ``mass`` is refused),
+        a RigidBlock 1 kg unless given.
     theta0, dtheta0 : float
         Initial rotation [rad] and angular velocity [rad/s].
     duration : float, optional
@@ -118,6 +121,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     >>> list(run.events.event)
     ['uplift', 'impact', 'pass-alpha', 'overturn']
     """
+    mass = registry.carried_mass(body, foundation, mass)
     body = registry.model_body(body)
     kw = {}
     if max_steps is not None:
@@ -125,7 +129,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     if record_breakpoints is not None:
         kw["record_breakpoints"] = record_breakpoints
     resample_vertical = V.boolean("resample_vertical", resample_vertical)
-    spec = registry.select(body, wall, friction, foundation, V.positive("mass", mass))
+    spec = registry.select(body, wall, friction, foundation, None if mass is None else V.positive("mass", mass))
     ground = as_ground(ground)
     if ground is not None:
         ground.check_scene(body, friction=friction, flexible=spec.flexible, foundation=foundation)

@@ -270,6 +270,7 @@ class Study:
                 raise StudyError(f"bodies[{i}] must be a RigidBlock, RigidBody or FlexibleBody, "
                                  f"got {type(b).__name__}")
         # a symmetric RigidBody runs as its RigidBlock, as in simulate and spectra
+        given = bodies
         bodies = [registry.model_body(b) for b in bodies]
         names, walls, effects = _variants(self.variants)
         solver = self.solver
@@ -295,7 +296,8 @@ class Study:
         for bi, body in enumerate(bodies):
             for vi, wall in enumerate(walls):
                 try:
-                    friction, foundation, mass = _resolve_effects(body, effects[vi])
+                    friction, foundation, mass = _resolve_effects(given[bi], effects[vi])
+                    mass = registry.carried_mass(given[bi], foundation, mass)
                     specs[bi, vi] = registry.select(body, wall, friction, foundation, mass)
                     if effects[vi].get("ground") is not None:
                         effects[vi]["ground"].check_scene(body, friction=friction, flexible=specs[bi, vi].flexible,
@@ -480,7 +482,8 @@ def _variant_effects(v):
             if "mass" in fnd:
                 raise ValueError("give the block mass as the variant's mass, not inside foundation")
         out["foundation"] = fnd
-        out["mass"] = V.positive("mass", v.get("mass", 1.0))
+        if "mass" in v:
+            out["mass"] = V.positive("mass", v["mass"])
     elif "mass" in v:
         raise ValueError("mass goes with a foundation")
     return out
@@ -489,10 +492,10 @@ def _variant_effects(v):
 def _resolve_effects(body, fx):
     """The variant's effects for one body: a foundation table becomes its model object."""
     fnd = fx.get("foundation")
-    mass = fx.get("mass", 1.0)
+    mass = fx.get("mass")
     if isinstance(fnd, dict):
         from fastrock.running.scene import foundation_from_table
-        fnd, _mass = foundation_from_table({**fnd, "mass": mass}, body)   # omega refers to this block's mass
+        fnd, _mass = foundation_from_table(fnd if mass is None else {**fnd, "mass": mass}, body)   # omega refers to this block's mass
     return fx.get("friction"), fnd, mass
 
 
