@@ -50,3 +50,38 @@ def test_long_record_90s_at_dt_0005():
     H.definite(res, HARD_BUDGET, columns=("u", "u_dot", "theta", "theta_dot"))
     assert res.outcome == "safe" and res.metrics["impacts"] > 0
     assert res.metrics["time_end"] == pytest.approx(rec.end_time(flex) + 2.0, abs=1e-9)
+
+
+# Fuzz reproductions (issue #14, bench/README.md "Fuzz baseline"): undamped columns on a massless
+# base (m_b = 0, I_m = 0) whose deflection reaches u = sB while the body falls, where the mass
+# matrix is singular (det = (u - sB)^2).  They ended failed:step-underflow.  The kernel passes the
+# fold as the limit of a vanishing base inertia (kernels/flexible.py docstring); the reference is
+# that regular model itself, rotary_inertia_ratio = 1e-8 (its difference from the limit is O(1e-8)).
+FOLD_CASES = [
+    # batch, (alpha, p, omega_n/p), pulse kind, (a_p/(g tan alpha), omega_p/p), outcome
+    ("flexible:2027:207", (0.3733829167663731, 6.233212561948374, 2.5465219458159343), "one-sine",
+     (15.70084003280347, 5.094461768818649), "mode2"),
+    ("flexible:2027:385", (0.4762662676993316, 0.6966136692797811, 2.11370798033852), "one-sine",
+     (22.42402832448681, 8.004874324793034), "mode2"),
+    ("flexible:2027:528", (0.45922501273288224, 7.394673097477244, 3.082660656960758), "one-cosine",
+     (30.62917196890513, 4.672797883381405), "mode1"),
+]
+
+
+@pytest.mark.parametrize("case", FOLD_CASES, ids=[c[0] for c in FOLD_CASES])
+def test_massless_base_passes_the_fold(case):
+    _bid, (alpha, p, wr), kind, (a, f), outcome = case
+    runs = {}
+    for im in (0.0, 1e-8):
+        b = fr.FlexibleBody(alpha=alpha, p=p, omega_n_over_p=wr, zeta=0.0, rotary_inertia_ratio=im)
+        for sign in (1, -1):
+            pul = fr.Pulse(a, f, sign, kind, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+            runs[im, sign] = fr.simulate(b, pul, t_after=10.0, solver=fr.Solver(rtol=1e-10))
+    for (im, sign), r in runs.items():
+        assert r.outcome == outcome, (im, sign, r.status)
+        assert np.isfinite(r.history[["u", "u_dot", "theta", "theta_dot"]].to_numpy()).all()
+    for sign in (1, -1):
+        lim, ref = runs[0.0, sign].metrics, runs[1e-8, sign].metrics
+        assert lim["time_end"] == pytest.approx(ref["time_end"], rel=1e-6)
+        assert lim["max_deformation"] == pytest.approx(ref["max_deformation"], rel=1e-6)
+        assert lim["impacts"] == ref["impacts"]
