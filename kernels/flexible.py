@@ -44,10 +44,11 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import excitation_end, ground, ground_rates
-from .hybrid import (book_time, check_energy, final_status, init_metrics,
-                     integrate_hybrid, log_event, sweep_rows)
+from .hybrid import (C_NLOG, book_time, check_energy, final_status,
+                     init_metrics, integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
-                     EV_UPLIFT, FLIGHT, MODE_REST, MODE_ROCK, M_ENERGY_GAINS,
+                     EV_UPLIFT, FLIGHT, LOG_KIND, LOG_T, MODE_REST, MODE_ROCK,
+                     M_ENERGY_GAINS,
                      M_IMPACTS, M_MAX_U, M_MIN_U, M_T_LAST_IMPACT, M_T_UPLIFT,
                      N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0, RUNNING)
 from .rigid import initial_pivot, overturned, passed_alpha, track_rotation
@@ -241,6 +242,26 @@ def contact_or_uplift(t, y, par, disc, hdr, smp, met, log, cnt):
 
 
 @jit
+def never_left(t, y, disc, met, log, cnt):
+    """An impact with theta'- = 0 can only come at the instant of an uplift:
+    the rocking equation turned the body back at once, so the uplift test
+    was met within rounding at a zero of the margin that the margin leaves
+    upward (at the same state s theta'' has the other sign).  The body never
+    left the ground: full contact, the uplift undone, and no new uplift test
+    at this instant (it would repeat the same uplift and landing for ever);
+    the uplift event takes the body up once the margin is negative over a
+    step."""
+    disc[D_MODE] = MODE_REST
+    y[2] = 0.0
+    if met[M_T_UPLIFT] == t:
+        met[M_T_UPLIFT] = np.nan
+    i = cnt[C_NLOG] - 1
+    if i >= 0 and log[i, LOG_KIND] == EV_UPLIFT and log[i, LOG_T] == t:
+        cnt[C_NLOG] = i
+    return RUNNING
+
+
+@jit
 def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     rocking = disc[D_MODE] == MODE_ROCK
     s = disc[D_PIVOT]
@@ -257,6 +278,8 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return FLIGHT
     if k == R_IMPACT:
         book_time(t, disc, met)
+        if y[3] == 0.0:
+            return never_left(t, y, disc, met, log, cnt)
         pre = y[3]
         met[M_IMPACTS] += 1
         met[M_T_LAST_IMPACT] = t
