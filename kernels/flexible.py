@@ -30,7 +30,14 @@ theta + 2 atan(r/H)), same mass position, same phi', and the radial speed
 reversed with its kinetic energy changed by V(r) - V(-r) (energy kept; if
 that is negative beyond the radial energy, the mass turns back before the
 fold: reflection on the same branch).  Skipping the layer |r| < FOLD_WIDTH B
-costs O(FOLD_WIDTH^2) (its transit time and the bounded forces over it).
+costs O(FOLD_WIDTH^2) (its transit time and the bounded forces over it)
+while the radial speed is well above sqrt(2 w^2 B FOLD_WIDTH B), the
+speed the strain's pull changes across the layer; a slower mass lingers
+in the layer (flexible_wall:2026:152, a base rattling between ground and
+wall with the mass near the fold: FOLD_WIDTH 1e-4 gave an overturning
+time 8 % off the limit of vanishing base inertia, 1e-5 gives 3e-7).
+Much smaller widths are not reachable: at rtol 1e-11 the step underflows
+before |r| = 1e-6 B (flexible:2027:207).
 With a dashpot (zeta > 0) the dissipation c u'^2 diverges like ln at the
 fold, so the mass arrives with no radial speed, on the creep where the
 column's shear w^2 u + 2 zeta w u' vanishes (a massless base takes no
@@ -73,7 +80,7 @@ R_U_MAX = 4         # extrema of u (observers)
 R_U_MIN = 5
 R_FLIGHT = 6        # G reaches 0 (terminal)
 R_FOLD = 7          # massless base: |u - sB| reaches FOLD_WIDTH B (terminal)
-FOLD_WIDTH = 1e-4
+FOLD_WIDTH = 1e-5
 
 
 @jit

@@ -300,3 +300,26 @@ def test_damped_massless_base_passes_the_fold():
     assert r.status == ref.status == "overturn:mode1"
     assert np.isfinite(r.history[["u", "u_dot", "theta", "theta_dot"]].to_numpy()).all()
     assert r.metrics["impacts"] == ref.metrics["impacts"]
+
+
+def test_massless_base_rattling_at_the_fold_matches_the_regular_limit():
+    """Fuzz reproduction flexible_wall:2026:152 (ended failed:step-underflow): undamped column on
+    a massless base, elastic wall 4.8e-4 rad away; the mass lingers near the fold u = sB while the
+    base rattles between ground and wall.  The run must give the limit of a vanishing base inertia:
+    against rotary_inertia_ratio 1e-10 (1e-8, 1e-12, 1e-14 give the same outcome, 124 ground and
+    2 299 to 2 307 wall impacts, and overturning times within 1e-6 of each other), the same status
+    and impact counts and the overturning time to 1e-6 (with the fold width 1e-4 B it was 8 % off)."""
+    kw = dict(alpha=0.2133662522982538, p=2.3136327224536193, omega_n_over_p=2.483278154522598,
+              zeta=0.0)
+    wall = Wall(gap=0.0017073532186651563, side=-1, restitution=1.0)
+    pul = fr.Pulse(23.434877, 3.286898, 1, "one-sine", amplitude_unit="g_tan_alpha",
+                   frequency_unit="omega_p/p")
+    solver = fr.Solver(rtol=8.534276433512402e-07)
+    r = fr.simulate(FlexibleBody(**kw), pul, wall=wall, t_after=10.0, solver=solver)
+    ref = fr.simulate(FlexibleBody(rotary_inertia_ratio=1e-10, **kw), pul, wall=wall, t_after=10.0,
+                      solver=solver)
+    assert r.status == ref.status == "overturn:mode1"
+    assert np.isfinite(r.history[["u", "u_dot", "theta", "theta_dot"]].to_numpy()).all()
+    assert r.metrics["impacts"] == ref.metrics["impacts"]
+    assert abs(r.metrics["wall_impacts"] - ref.metrics["wall_impacts"]) <= 10
+    assert r.metrics["time_end"] == pytest.approx(ref.metrics["time_end"], rel=1e-6)
