@@ -11,7 +11,39 @@ classic model has m_b = 0).
 Events (ids C_* in full contact, R_* while rocking): C_UPLIFT (signed test
 of 3.3, either corner), C_U_MAX/C_U_MIN extrema of u (observers), C_FLIGHT;
 R_IMPACT s*theta, R_OVERTURN, R_PEAK s*theta', R_PASS_ALPHA, R_U_MAX/R_U_MIN
-extrema of u, R_FLIGHT.
+extrema of u, R_FLIGHT, R_FOLD (massless base only, below).
+
+Fold of a massless base (m_b = 0, I_m = 0).  The mass matrix of 3.4 has
+det = (u - sB)^2: at r = u - sB = 0 the mass lies on the line from the
+pivot along the column, at its least distance H from the pivot, and the
+base angle is no longer fixed by the mass's position (the mass at distance
+rho = sqrt(r^2 + H^2) >= H, angle phi = theta + atan(r/H) from the
+vertical; both signs of r give the same point).  Undamped, the mass reaches
+that circle in finite time with a finite radial speed (the column force's
+radial part is dV/drho with V = w^2 u^2/2, a 1/sqrt(rho - H) pull that is
+integrable), while u' and theta' grow like 1/r: no step size resolves it.
+The limit of a small base inertia I (det = r^2 + I, regular; r passes
+through 0 monotonically, since r's kinetic coefficient stays positive)
+is an elastic reflection of the mass off that circle, r changing sign:
+at |r| = FOLD_WIDTH B the run maps to the mirror configuration (-r,
+theta + 2 atan(r/H)), same mass position, same phi', and the radial speed
+reversed with its kinetic energy changed by V(r) - V(-r) (energy kept; if
+that is negative beyond the radial energy, the mass turns back before the
+fold: reflection on the same branch).  Skipping the layer |r| < FOLD_WIDTH B
+costs O(FOLD_WIDTH^2) (its transit time and the bounded forces over it)
+while the radial speed is well above sqrt(2 w^2 B FOLD_WIDTH B), the
+speed the strain's pull changes across the layer; a slower mass lingers
+in the layer (flexible_wall:2026:152, a base rattling between ground and
+wall with the mass near the fold: FOLD_WIDTH 1e-4 gave an overturning
+time 8 % off the limit of vanishing base inertia, 1e-5 gives 3e-7).
+Much smaller widths are not reachable: at rtol 1e-11 the step underflows
+before |r| = 1e-6 B (flexible:2027:207).
+With a dashpot (zeta > 0) the dissipation c u'^2 diverges like ln at the
+fold, so the mass arrives with no radial speed, on the creep where the
+column's shear w^2 u + 2 zeta w u' vanishes (a massless base takes no
+moment, and the axial force's arm r goes to 0): the map then puts u' on
+that creep, u' = -w u / (2 zeta), outward, crossing the fold where the
+column's potential pulls the mass in (V(r) > V(-r)).
 """
 import math
 
@@ -19,10 +51,11 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import excitation_end, ground, ground_rates
-from .hybrid import (book_time, check_energy, final_status, init_metrics,
-                     integrate_hybrid, log_event, sweep_rows)
+from .hybrid import (C_NLOG, book_time, check_energy, final_status,
+                     init_metrics, integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
-                     EV_UPLIFT, FLIGHT, MODE_REST, MODE_ROCK, M_ENERGY_GAINS,
+                     EV_UPLIFT, FLIGHT, LOG_KIND, LOG_T, MODE_REST, MODE_ROCK,
+                     M_ENERGY_GAINS,
                      M_IMPACTS, M_MAX_U, M_MIN_U, M_T_LAST_IMPACT, M_T_UPLIFT,
                      N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0, RUNNING)
 from .rigid import initial_pivot, overturned, passed_alpha, track_rotation
@@ -32,7 +65,7 @@ from .layout import (F_ALPHA, F_B, F_E, F_G, F_H, F_HB, F_IB, F_IM,  # noqa: E40
                      IMPACT_FULL_CONTACT, IMPACT_PIVOT_SWITCH,
                      N_PAR_FLEXIBLE as N_PAR)
 
-N_EVENTS = 7
+N_EVENTS = 8
 # event ids in full contact
 C_UPLIFT = 0        # signed uplift test of 3.3, either corner (terminal)
 C_U_MAX = 1         # u' = 0 from above: extremum of u (observer)
@@ -46,6 +79,8 @@ R_PASS_ALPHA = 3    # s theta passes alpha (observer)
 R_U_MAX = 4         # extrema of u (observers)
 R_U_MIN = 5
 R_FLIGHT = 6        # G reaches 0 (terminal)
+R_FOLD = 7          # massless base: |u - sB| reaches FOLD_WIDTH B (terminal)
+FOLD_WIDTH = 1e-5
 
 
 @jit
@@ -160,6 +195,12 @@ def event(k, t, y, par, disc, hdr, smp):
         sg = 1.0 if k == R_U_MAX else -1.0
         udd, _ = accelerations(t, y, s, True, par, hdr, smp)
         return sg * y[1], sg * udd, False
+    if k == R_FOLD:
+        if base_inertia(par) > 0.0:
+            return np.inf, 0.0, True
+        r = y[0] - s * par[F_B]
+        d = FOLD_WIDTH * par[F_B]
+        return r * r - d * d, 2.0 * r * y[1], True
     _ag, _dag, av, dav = ground_rates(t, hdr, smp)
     return par[F_G] + av, dav, True
 
@@ -208,6 +249,26 @@ def contact_or_uplift(t, y, par, disc, hdr, smp, met, log, cnt):
 
 
 @jit
+def never_left(t, y, disc, met, log, cnt):
+    """An impact with theta'- = 0 can only come at the instant of an uplift:
+    the rocking equation turned the body back at once, so the uplift test
+    was met within rounding at a zero of the margin that the margin leaves
+    upward (at the same state s theta'' has the other sign).  The body never
+    left the ground: full contact, the uplift undone, and no new uplift test
+    at this instant (it would repeat the same uplift and landing for ever);
+    the uplift event takes the body up once the margin is negative over a
+    step."""
+    disc[D_MODE] = MODE_REST
+    y[2] = 0.0
+    if met[M_T_UPLIFT] == t:
+        met[M_T_UPLIFT] = np.nan
+    i = cnt[C_NLOG] - 1
+    if i >= 0 and log[i, LOG_KIND] == EV_UPLIFT and log[i, LOG_T] == t:
+        cnt[C_NLOG] = i
+    return RUNNING
+
+
+@jit
 def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     rocking = disc[D_MODE] == MODE_ROCK
     s = disc[D_PIVOT]
@@ -224,6 +285,8 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return FLIGHT
     if k == R_IMPACT:
         book_time(t, disc, met)
+        if y[3] == 0.0:
+            return never_left(t, y, disc, met, log, cnt)
         pre = y[3]
         met[M_IMPACTS] += 1
         met[M_T_LAST_IMPACT] = t
@@ -269,8 +332,42 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     if k == R_U_MAX or k == R_U_MIN:
         track_u(y[0], met)
         return RUNNING
+    if k == R_FOLD:
+        book_time(t, disc, met)
+        fold_passage(y, s, par)
+        track_u(y[0], met)
+        track_rotation(y[2], met)
+        return RUNNING
     log_event(log, cnt, t, EV_FLIGHT, y[3], y[3], y[2], s)   # R_FLIGHT
     return FLIGHT
+
+
+@jit
+def fold_passage(y, s, par):
+    """The massless base's passage of the fold r = u - sB = 0 (module
+    docstring), applied in place at |r| = FOLD_WIDTH B."""
+    H = par[F_H]
+    sB = s * par[F_B]
+    wn = par[F_WN]
+    z = par[F_ZETA]
+    r = y[0] - sB
+    rho2 = r * r + H * H
+    dphi = y[3] + H * y[1] / rho2
+    drho2 = (r * y[1]) ** 2 / rho2
+    gain = 2.0 * wn * wn * sB * r        # V(r) - V(-r)
+    cross = gain > 0.0 if z > 0.0 else drho2 + 2.0 * gain >= 0.0
+    if cross:
+        y[0] = sB - r
+        y[2] += 2.0 * math.atan(r / H)
+        r = -r
+    if z > 0.0:
+        du = -wn * y[0] / (2.0 * z)
+    else:
+        # outward radial speed rho' = r u' / rho
+        du = math.sqrt(drho2 + 2.0 * gain if cross else drho2) * \
+            math.sqrt(rho2) / r
+    y[1] = du
+    y[3] = dphi - H * du / rho2
 
 
 @jit

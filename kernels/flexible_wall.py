@@ -76,13 +76,13 @@ from .layout import (D_MODE, D_PIVOT, D_WALL_REST, EV_FLIGHT, EV_WALL_IMPACT,
                      SAFE_MOVING)
 from .rigid import track_rotation
 
-N_EVENTS = 8
+N_EVENTS = 9
 # small-gap limit (layout.SMALL_GAP_ANGLE, 0.2 um for 2H = 2 m): a
 # closer wall blocks every uplift toward it; the body then only rocks away
 # from the wall, as Hogan's gap-0 block does.  Without it an elastic wall
 # at a gap of nanometres makes the body bounce in that gap thousands of
 # times a second until the step budget runs out.
-R_WALL = 7          # while rocking on the near corner: w theta reaches theta_w
+R_WALL = 8          # while rocking on the near corner: w theta reaches theta_w
 # events at rest on the wall
 W_RELEASE = 0       # the wall's reaction reaches 0 (terminal)
 W_U_MAX = 1         # extrema of u (observers)
