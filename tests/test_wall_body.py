@@ -70,9 +70,12 @@ def test_a_symmetric_body_is_the_block_bit_for_bit(wall):
     b = spectrum(sym.to_block(), wall=wall)
     assert a.attrs["kernel"] == b.attrs["kernel"] == "rigid_wall"
     pd.testing.assert_frame_equal(a, b)
-    # the asymmetric entry on the same body: the kernel reads both sides, equal here
-    par = fr.RigidBody.from_block(sym.to_block())
-    assert registry.select(par, wall).name == "rigid_wall"
+    # the body's own per-side vector (wall_body's) is the block's: the same kernel input
+    from fastrock.running.models import wall_par
+    exact = fr.RigidBody(mass=2.0, inertia=0.3, b1=0.3, h1=1.0, b2=0.3, h2=1.0,
+                         outline=[(-0.3, -1.0), (0.3, -1.0), (0.3, 1.0), (-0.3, 1.0)])
+    assert np.array_equal(wall_par(exact, wall), wall_par(exact.to_block(), wall))
+    # frozen wall grids and tests/test_wall*.py: the per-side kernel gives the block's old runs
 
 
 def test_mirror_body_mirror_wall_mirror_pulse():
@@ -169,21 +172,23 @@ def test_small_gap_limit_composes_the_three_impacts():
 
 def test_gap_against_the_contact_model():
     """At a gap d > 0 the wall model and the contact model with a pivot that never slips model
-    the same physics: on the cells where the contact model never flies, the same outcomes, wall
-    impacts and max rotations to the integration tolerance (rtol 1e-10 on both)."""
+    the same physics: on the cells where the contact model never flies, run to the end (the two
+    models' early decisions book impacts differently), the same outcomes, ground and wall impact
+    counts, and max rotations to the integration tolerance (rtol 1e-10 on both; they differ by
+    9e-10 at most here)."""
     solver = fr.Solver(rtol=1e-10)
     amps, freqs = np.array([0.9, 1.5, 2.5, 4.0]), np.array([1.0, 2.5, 5.0])
     for side in (1, -1):
         wall = fr.Wall(0.05, side=side, restitution=0.8)
-        a = fr.overturning_spectrum(BODY, amps, freqs, sign="both", wall=wall, solver=solver, progress=False)
-        b = fr.overturning_spectrum(BODY, amps, freqs, sign="both", wall=wall, solver=solver, progress=False,
-                                    friction=fr.Friction.never_slipping())
+        kw = dict(sign="both", wall=wall, solver=solver, progress=False, early_exit=False)
+        a = fr.overturning_spectrum(BODY, amps, freqs, **kw)
+        b = fr.overturning_spectrum(BODY, amps, freqs, friction=fr.Friction.never_slipping(), **kw)
         assert a.attrs["kernel"] == "wall_body" and b.attrs["kernel"] == "contact_body"
         keep = (b["flights"] == 0).to_numpy()
-        assert keep.sum() >= 15
-        assert list(a["outcome"].astype(str)[keep]) == list(b["outcome"].astype(str)[keep])
-        assert (a["wall_impacts"] > 0).any()
-        np.testing.assert_allclose(a["max_rotation"][keep], b["max_rotation"][keep], rtol=1e-6, atol=1e-9)
+        assert keep.sum() >= 15 and (a["wall_impacts"][keep] > 0).sum() >= 8
+        for col in ("outcome", "wall_impacts", "ground_impacts"):
+            assert list(a[col].astype(str)[keep]) == list(b[col].astype(str)[keep]), col
+        np.testing.assert_allclose(a["max_rotation"][keep], b["max_rotation"][keep], rtol=1e-8, atol=0)
 
 
 def test_short_wall():
