@@ -180,6 +180,11 @@ P_P_NEG = 11        # rad/s, p_1
 P_E_NEG = 12        # restitution of an impact from pivot -1 onto pivot +1
 P_IO_RATIO = 13     # I_O,1 / I_O,2: inertia about pivot -1 over that about +1
 N_PAR_RIGID_BODY = 14
+# rigid block or asymmetric body against a rear wall (kernels.wall): the
+# rigid_body vector (both sides; a symmetric block fills P_*_NEG with its own
+# alpha, p, e and P_IO_RATIO with 1) with the wall entries P_WALL_SIDE ...
+# P_HOGAN above
+N_PAR_WALL = N_PAR_RIGID_BODY
 
 # rigid block with friction (kernels.friction), after the rigid entries
 Q_B = 10            # m, half-width

@@ -8,8 +8,10 @@ While pivoting on the corner near the wall (``s == w``) the block touches
 the wall at ``w*theta = theta_w = par[P_THETA_W]`` [rad] (the front end
 computes it from the gap and the wall height; ``inf`` means the wall is
 never reached).  Tilting away from the wall (``s == -w``) is plain Housner
-rocking.  Parameters are those of :mod:`.rigid` plus P_WALL_SIDE,
-P_THETA_W, P_E_W (wall restitution e_w) and P_HOGAN.
+rocking.  Parameters are those of :mod:`.rigid`'s asymmetric body (both
+pivots' alpha, p and ground restitution, N_PAR_WALL; the symmetric block
+fills both sides with its own) plus P_WALL_SIDE, P_THETA_W, P_E_W (wall
+restitution e_w) and P_HOGAN.
 
 Events while rocking (0-4 are :func:`.rigid.event`):
 
@@ -71,6 +73,29 @@ Maps and states
   adds any.  With 1 - r^2 > rtol the bounces converge (Zeno) and end by
   the chatter rule, as before.
 
+Asymmetric body
+---------------
+An asymmetric RigidBody (:mod:`.rigid`, "Asymmetric body") runs the same
+maps with each side's numbers: on pivot k it rocks by Housner's EOM with
+alpha_k, p_k; a ground impact from pivot k onto j is theta'+ = e_k theta'-
+(angular momentum about the new pivot, P_E / P_E_NEG); a wall impact keeps
+the pivot (w) and multiplies theta' by -e_w; theta_w comes from the body's
+wall-side face (the front end).  Energies E_k are in units of M g R_k
+(zero at rest), E_k = theta'^2 / (2 p_k^2) + cos(alpha_k - k theta) -
+cos(alpha_k); a ground impact turns E_k at theta = 0 into
+E_j = rho_k E_k, rho_k = e_k^2 p_k^2 / p_j^2 (= e_k^2 I_O,j / I_O,k <= 1).
+At gap 0 the body rests on both pivots, uplifts only onto the far pivot
+-w (w a_g > G tan alpha_-w) and stays on it; Hogan's combined impact keeps
+that pivot, so its inertia is the same before and after and the energy
+ratio is r^2 whatever the sides: r = e_w (the per-side ground factor is 1;
+the symmetric block's rule).  In the small-gap limit the three impacts
+compose to r = e_-w e_w e_w(wall) = e_1 e_2 e_w: a ground impact onto the
+near pivot, the wall, a ground impact back; r^2 = rho_-w rho_w e_w^2 =
+e_1^2 e_2^2 e_w^2 <= 1 (e_1 e_2 = (I_G + M r_1 . r_2)^2 / (I_O,1 I_O,2)
+<= 1 by Cauchy-Schwarz, or a given e <= 1).  Early decisions are per side:
+safe once E_s is below the barrier 1 - cos(alpha_s) inside the well and,
+on two-sided rocking, rho_s E_s below the other side's barrier.
+
 Outcomes
 --------
 LEANING: at rest on the wall at the end of the run with theta_w > alpha,
@@ -95,22 +120,53 @@ from .excitation import excitation_end, ground
 from .hybrid import (check_energy, elastic_below_resolution, final_status,
                      integrate_hybrid, is_chatter, log_event, sweep_rows)
 from .layout import SMALL_GAP_ANGLE
+from .layout import (P_ALPHA, P_ALPHA_NEG, P_E, P_E_NEG, P_E_W, P_G, P_HOGAN,
+                     P_P, P_P_NEG, P_THETA_OVER, P_THETA_W, P_WALL_SIDE)
 from .layout import (D_MODE, D_PIVOT, D_STATIC, D_WALL_REST, EV_FLIGHT,
                      EV_REST, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
                      FLIGHT, LEANING, MODE_REST, MODE_ROCK, MODE_WALL_REST,
                      M_IMPACTS, M_WALL_IMPACTS, N_DISC, O_EARLY_EXIT, O_RTOL,
                      O_T0, RUNNING, SAFE_BOUNDED, SAFE_REST)
-from .rigid import (K_FLIGHT, K_IMPACT, K_OVERTURN, P_ALPHA, P_E, P_E_W, P_G,
-                    P_HOGAN, P_P, P_THETA_OVER, P_THETA_W, P_WALL_SIDE,
-                    free_energy, ground_impact, init_state as rigid_init_state,
-                    observe, overturned, peak_from_energy, rhs,
-                    start_rocking_or_rest, theta_ddot, track_rotation,
-                    UPLIFT_RTOL)
-from .rigid import event as rigid_event
-from .rigid import static_margin as rest_margin
+from .rigid import (K_FLIGHT, K_IMPACT, K_OVERTURN, UPLIFT_RTOL, body_event,
+                    body_ground_impact, body_rhs, body_start_rocking_or_rest,
+                    body_static_margin, housner,
+                    init_state as rigid_init_state, observe, overturned,
+                    peak_from_energy, track_rotation)
 
 N_EVENTS = 6
 K_WALL = 5
+
+
+@jit
+def side_alpha_p(par, s):
+    """alpha and p of pivot s (P_* for +1, P_*_NEG for -1)."""
+    if s > 0:
+        return par[P_ALPHA], par[P_P]
+    return par[P_ALPHA_NEG], par[P_P_NEG]
+
+
+@jit
+def side_energy(theta, dtheta, s, alpha, p):
+    """Free-rocking energy on pivot s / (M g R_s), zero at rest (as
+    :func:`.rigid.free_energy`, with the side's alpha and p)."""
+    return 0.5 * dtheta * dtheta / (p * p) + math.cos(alpha - s * theta) - math.cos(alpha)
+
+
+@jit
+def impact_energy_ratio(par, s):
+    """rho_s: a ground impact leaving pivot s turns E_s into rho_s E_s
+    (each in units of its side's M g R), rho_s = e_s^2 p_s^2 / p_-s^2."""
+    if s > 0:
+        e = par[P_E]
+        ps = par[P_P]
+        po = par[P_P_NEG]
+    else:
+        e = par[P_E_NEG]
+        ps = par[P_P_NEG]
+        po = par[P_P]
+    return (e * e) * ((ps * ps) / (po * po))
+
+
 @jit
 def one_sided(par):
     """Hogan's one-sided rocking: gap 0, or the small-gap limit."""
@@ -120,32 +176,31 @@ def one_sided(par):
 @jit
 def hogan_r(par):
     """Restitution of the combined ground and wall impact: Hogan's r = e_w
-    at gap 0, e^2 e_w in the small-gap limit."""
+    at gap 0, e_1 e_2 e_w in the small-gap limit (e^2 e_w for the block)."""
     if par[P_HOGAN] != 0.0:
         return par[P_E_W]
-    return par[P_E] * par[P_E] * par[P_E_W]
+    return par[P_E_NEG] * par[P_E] * par[P_E_W]
 
 
 @jit
-def rigid_bounce_unresolved(r, post, par, opt):
-    """:func:`elastic_below_resolution` for the block: rebound energy
-    theta'+^2 / (2 p^2) [M g R], scale the barrier 1 - cos(alpha)."""
-    p = par[P_P]
+def rigid_bounce_unresolved(r, post, alpha, p, opt):
+    """:func:`elastic_below_resolution` on a pivot of alpha, p: rebound
+    energy theta'+^2 / (2 p^2) [M g R], scale the barrier 1 - cos(alpha)."""
     return elastic_below_resolution(r, 0.5 * post * post / (p * p),
-                                    1.0 - math.cos(par[P_ALPHA]), opt)
+                                    1.0 - math.cos(alpha), opt)
 
 
 @jit_generic
 def event(k, t, y, par, disc, hdr, smp):
     # Inlined at the Numba-IR level: a separately compiled wrapper around
-    # rigid.event adds a call layer to the hottest function of the driver
-    # (every event at every step) and cost ~25% with an inert wall.
+    # rigid.body_event adds a call layer to the hottest function of the
+    # driver (every event at every step) and cost ~25% with an inert wall.
     if k == K_WALL:
         w = par[P_WALL_SIDE]
         if disc[D_PIVOT] == w:
             return par[P_THETA_W] - w * y[0], -w * y[1], True
         return np.inf, 0.0, True
-    return rigid_event(k, t, y, par, disc, hdr, smp)
+    return body_event(k, t, y, par, disc, hdr, smp)
 
 
 @jit
@@ -158,18 +213,24 @@ def wall_rest_margin(t, par, hdr, smp):
     after the release."""
     te = np.inf if t >= excitation_end(hdr) else t
     w = par[P_WALL_SIDE]
-    _ag, av = ground(te, hdr, smp)
-    m = w * theta_ddot(te, w * par[P_THETA_W], w, par, hdr, smp)
-    return min(m, par[P_G] + av)
+    tw = par[P_THETA_W]
+    g = par[P_G]
+    alpha, p = side_alpha_p(par, w)
+    ag, av = ground(te, hdr, smp)
+    m = w * housner(w * tw, w, alpha, p, g, ag, av)
+    return min(m, g + av)
 
 
 @jit
 def hogan_rest_margin(t, par, hdr, smp):
-    """d = 0: full contact holds while w a_g <= G tan(alpha) (uplift away
-    from the wall only); the wall blocks any uplift toward it."""
+    """d = 0: full contact holds while w a_g <= G tan(alpha_-w) (uplift
+    onto the far pivot only); the wall blocks any uplift toward it."""
+    w = par[P_WALL_SIDE]
+    alpha, _p = side_alpha_p(par, -w)
+    g = par[P_G]
     ag, av = ground(t, hdr, smp)
-    G = par[P_G] + av
-    return min(G * math.tan(par[P_ALPHA]) * (1.0 + UPLIFT_RTOL) - par[P_WALL_SIDE] * ag, G)
+    G = g + av
+    return min(G * math.tan(alpha) * (1.0 + UPLIFT_RTOL) - w * ag, G)
 
 
 @jit
@@ -178,7 +239,7 @@ def static_margin(t, y, par, disc, hdr, smp):
         return wall_rest_margin(t, par, hdr, smp)
     if one_sided(par):
         return hogan_rest_margin(t, par, hdr, smp)
-    return rest_margin(t, y, par, disc, hdr, smp)
+    return body_static_margin(t, y, par, disc, hdr, smp)
 
 
 @jit
@@ -186,13 +247,15 @@ def start_from_rest(t, y, par, disc, hdr, smp, met, log, cnt):
     """Uplift test from theta = theta' = 0 (d = 0 or a small gap: away from
     the wall only)."""
     if one_sided(par):
+        w = par[P_WALL_SIDE]
+        alpha, _p = side_alpha_p(par, -w)
         ag, av = ground(t, hdr, smp)
         G = par[P_G] + av
-        if G > 0.0 and par[P_WALL_SIDE] * ag <= G * math.tan(par[P_ALPHA]) * (1.0 + UPLIFT_RTOL):
+        if G > 0.0 and w * ag <= G * math.tan(alpha) * (1.0 + UPLIFT_RTOL):
             disc[D_MODE] = MODE_REST
             disc[D_STATIC] = 1
             return RUNNING
-    return start_rocking_or_rest(t, y, par, disc, hdr, smp, met, log, cnt)
+    return body_start_rocking_or_rest(t, y, par, disc, hdr, smp, met, log, cnt)
 
 
 @jit
@@ -225,6 +288,7 @@ def release_from_wall(t, y, par, disc, log, cnt):
 def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     """Wall impact: pivot kept, theta'+ = -e_w theta'- (physics.md 2)."""
     w = par[P_WALL_SIDE]
+    alpha, p = side_alpha_p(par, w)
     pre = y[1]
     post = -par[P_E_W] * pre
     y[0] = w * par[P_THETA_W]
@@ -234,7 +298,7 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     track_rotation(y[0], met)
     log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, y[0], disc[D_PIVOT])
     if is_chatter(t, post, opt, met) or \
-            rigid_bounce_unresolved(par[P_E_W], post, par, opt):
+            rigid_bounce_unresolved(par[P_E_W], post, alpha, p, opt):
         settle_on_wall(t, y, par, disc, hdr, smp, log, cnt)
     return RUNNING
 
@@ -244,6 +308,7 @@ def hogan_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     """d = 0 or a small gap: ground and wall impacts coincide at theta = 0;
     pivot kept on the far corner, theta'+ = -r theta'- (Hogan 1992; r of
     :func:`hogan_r`)."""
+    alpha, p = side_alpha_p(par, disc[D_PIVOT])
     pre = y[1]
     r = hogan_r(par)
     post = -r * pre
@@ -254,7 +319,7 @@ def hogan_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     check_energy(pre * pre, post * post, met)
     log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, 0.0, disc[D_PIVOT])
     if is_chatter(t, post, opt, met) or \
-            rigid_bounce_unresolved(r, post, par, opt):
+            rigid_bounce_unresolved(r, post, alpha, p, opt):
         y[1] = 0.0
         st = start_from_rest(t, y, par, disc, hdr, smp, met, log, cnt)
         if disc[D_MODE] == MODE_REST:
@@ -276,8 +341,8 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         if par[P_HOGAN] != 0.0 or (one_sided(par) and
                                    disc[D_PIVOT] != par[P_WALL_SIDE]):
             return hogan_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
-        return ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
-                             par[P_E])
+        return body_ground_impact(t, y, par, disc, hdr, smp, opt, met, log,
+                                  cnt)
     if k == K_WALL:
         return wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
     if k == K_OVERTURN:
@@ -297,8 +362,8 @@ def trapped_on_wall(y, par, disc):
     w = par[P_WALL_SIDE]
     if disc[D_PIVOT] != w or not par[P_THETA_W] < par[P_THETA_OVER]:
         return False
-    a = par[P_ALPHA]
-    return w * y[0] > a and free_energy(y, disc[D_PIVOT], par) < \
+    a, p = side_alpha_p(par, w)
+    return w * y[0] > a and side_energy(y[0], y[1], w, a, p) < \
         1.0 - math.cos(a)
 
 
@@ -306,30 +371,37 @@ def trapped_on_wall(y, par, disc):
 def fold_peaks(y, par, disc, met):
     """Closed-form next peak on each side of free rocking with energy below
     the barrier (exact: energy is conserved between impacts, a ground
-    impact multiplies it by e^2, a wall impact multiplies the kinetic part
-    at theta_w by e_w^2); later peaks are lower."""
-    a = par[P_ALPHA]
+    impact leaving pivot k multiplies it by rho_k (e^2 for the block), a
+    wall impact multiplies the kinetic part at theta_w by e_w^2); later
+    peaks are lower."""
     w = par[P_WALL_SIDE]
     tw = par[P_THETA_W]
     hogan = one_sided(par)
     ew2 = par[P_E_W] * par[P_E_W]
-    e2 = hogan_r(par) ** 2 if hogan else par[P_E] * par[P_E]
+    r2 = hogan_r(par) ** 2
     s = disc[D_PIVOT]
-    E = free_energy(y, s, par)
+    a, p = side_alpha_p(par, s)
+    E = side_energy(y[0], y[1], s, a, p)
     if s * y[1] > 0.0:
         side = s
+    elif hogan:
+        side = s
+        E *= r2
     else:
-        side = s if hogan else -s
-        E *= e2
+        side = -s
+        E *= impact_energy_ratio(par, s)
     for _ in range(2):
+        a, p = side_alpha_p(par, side)
         pk = peak_from_energy(a, E)
         if side == w and pk >= tw:
             pk = tw
             pe = math.cos(a - tw) - math.cos(a)
             E = pe + ew2 * (E - pe)
         track_rotation(side * pk, met)
-        E *= e2
-        if not hogan:
+        if hogan:
+            E *= r2
+        else:
+            E *= impact_energy_ratio(par, side)
             side = -side
 
 
@@ -339,7 +411,8 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     mode = disc[D_MODE]
     if at_end:
         if mode == MODE_WALL_REST:
-            if par[P_THETA_W] > par[P_ALPHA]:
+            a_w, _p = side_alpha_p(par, par[P_WALL_SIDE])
+            if par[P_THETA_W] > a_w:
                 return LEANING
             return SAFE_REST
         if mode != MODE_REST and t >= excitation_end(hdr) and \
@@ -350,11 +423,16 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     if opt[O_EARLY_EXIT] != 0.0 and mode == MODE_ROCK and \
             t >= excitation_end(hdr):
         s = disc[D_PIVOT]
-        a = par[P_ALPHA]
-        if one_sided(par) and s == par[P_WALL_SIDE]:
+        a, p = side_alpha_p(par, s)
+        hogan = one_sided(par)
+        if hogan and s == par[P_WALL_SIDE]:
             return RUNNING      # a start inside a small gap: until its impact
-        if free_energy(y, s, par) < 1.0 - math.cos(a):
-            if s * y[0] < a:
+        E = side_energy(y[0], y[1], s, a, p)
+        if E < 1.0 - math.cos(a):
+            # two-sided: the other side's barrier too (implied for the block)
+            a_o, _p = side_alpha_p(par, -s)
+            if s * y[0] < a and (hogan or impact_energy_ratio(par, s) * E <
+                                 1.0 - math.cos(a_o)):
                 fold_peaks(y, par, disc, met)
                 return SAFE_BOUNDED
             if trapped_on_wall(y, par, disc):
@@ -379,7 +457,7 @@ def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
         cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_hybrid(rhs, event, transition, static_margin,
+    return integrate_hybrid(body_rhs, event, transition, static_margin,
                             after_step, N_EVENTS, y, par, disc, hdr, smp,
                             opt, t_eval, met, hist_t, hist_y, hist_d, log,
                             cnt)
@@ -399,3 +477,9 @@ def rigid_wall_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
 def rigid_wall_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
     """One-sided runs in parallel (rows of Y0/PAR/HDR/OPT)."""
     sweep_rows(run, Y0, PAR, HDR, smp, OPT, status, MET, YF)
+
+
+# the asymmetric RigidBody's registry entry (model "wall_body") runs the
+# same kernels: the parameter vector carries both sides
+wall_body_simulate = rigid_wall_simulate
+wall_body_sweep = rigid_wall_sweep

@@ -1,5 +1,6 @@
-"""An asymmetric RigidBody beside a rear wall (issue #17 item 1: walls): the contact model with a
-pivot that never slips unless friction= is given; the wall's contact angle from the body's
+"""An asymmetric RigidBody beside a rear wall (issue #17 item 1: walls): with wall= alone the wall
+model (entry wall_body, tests/test_wall_body.py), with friction= or a pivot that never slips but
+may fly (Friction.never_slipping()) the contact model; the wall's contact angle from the body's
 wall-side face (RigidBody.wall_face_top)."""
 import math
 
@@ -12,6 +13,7 @@ OUTLINE = [(0.0, 0.0), (1.0, 0.0), (0.8, 2.2), (0.0, 2.2)]     # right face lean
 BODY = fr.RigidBody.from_polygon(OUTLINE, mass=1.0)
 MIRROR = fr.RigidBody.from_polygon([(-x, y) for x, y in OUTLINE], mass=1.0)
 AMPS, FREQS = np.array([1.2, 2.5, 5.0]), np.array([0.8, 2.5, 6.0])
+NEVER_SLIPS = fr.Friction.never_slipping()
 
 
 def test_contact_angle_from_the_wall_side_face():
@@ -25,10 +27,12 @@ def test_contact_angle_from_the_wall_side_face():
     assert fr.Wall(0.05).limit_angle(block) == fr.Wall(0.05).limit_angle(block.to_block())
 
 
+@pytest.mark.parametrize("friction, kernel", [(None, "wall_body"), (NEVER_SLIPS, "contact_body")])
 @pytest.mark.parametrize("side", [1, -1])
-def test_the_wall_catches_the_body(side):
-    df = fr.overturning_spectrum(BODY, AMPS, FREQS, sign="both", wall=fr.Wall(0.05, side=side), progress=False)
-    assert df.attrs["kernel"] == "contact_body"
+def test_the_wall_catches_the_body(side, friction, kernel):
+    df = fr.overturning_spectrum(BODY, AMPS, FREQS, sign="both", wall=fr.Wall(0.05, side=side), progress=False,
+                                 friction=friction)
+    assert df.attrs["kernel"] == kernel
     assert not (df["side"] == side).any()                 # never over toward the wall
     toward = df[df["sign"] == -side]
     assert (toward["wall_impacts"] > 0).any() and {"mode1", "safe"} <= set(toward["outcome"].astype(str))
@@ -37,8 +41,11 @@ def test_the_wall_catches_the_body(side):
 
 
 def test_mirror_body_mirror_wall_mirror_pulse():
-    a = fr.overturning_spectrum(BODY, AMPS, FREQS, sign=1, wall=fr.Wall(0.05, side=1), progress=False)
-    b = fr.overturning_spectrum(MIRROR, AMPS, FREQS, sign=-1, wall=fr.Wall(0.05, side=-1), progress=False)
+    a = fr.overturning_spectrum(BODY, AMPS, FREQS, sign=1, wall=fr.Wall(0.05, side=1), progress=False,
+                                friction=NEVER_SLIPS)
+    b = fr.overturning_spectrum(MIRROR, AMPS, FREQS, sign=-1, wall=fr.Wall(0.05, side=-1), progress=False,
+                                friction=NEVER_SLIPS)
+    assert a.attrs["kernel"] == "contact_body"
     assert list(a["outcome"].astype(str)) == list(b["outcome"].astype(str))
     assert list(a["wall_impacts"]) == list(b["wall_impacts"])
     np.testing.assert_allclose(a["max_rotation"], b["max_rotation"], rtol=1e-9, atol=1e-12)
@@ -50,9 +57,11 @@ def test_wall_out_of_reach_is_no_wall():
     flight). A body that flies moves sideways and may touch it while falling (3 of these 18 runs,
     each after a flight; the outcome and max rotation stay those without the wall)."""
     far = BODY.h2 + BODY.wall_face_top(1)
-    a = fr.overturning_spectrum(BODY, AMPS, FREQS, sign="both", wall=fr.Wall(1.01 * far, side=1), progress=False)
+    a = fr.overturning_spectrum(BODY, AMPS, FREQS, sign="both", wall=fr.Wall(1.01 * far, side=1), progress=False,
+                                friction=NEVER_SLIPS)
     b = fr.overturning_spectrum(BODY, AMPS, FREQS, sign="both", friction=fr.Friction(math.inf, lift_off="flight"),
                                 progress=False)
+    assert a.attrs["kernel"] == "contact_body"
     assert list(a["outcome"].astype(str)) == list(b["outcome"].astype(str))
     # the same runs up to rounding (the regression suites' contract)
     np.testing.assert_allclose(a["max_rotation"], b["max_rotation"], rtol=1e-12, atol=0)
@@ -63,7 +72,7 @@ def test_simulate_scene_and_bad_input(tmp_path):
     w = fr.Wall(0.05, side=1)
     r = fr.simulate(BODY, fr.Pulse(2.5, 2.5, sign=-1, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p"),
                     wall=w)
-    assert r.kernel == "contact_body" and r.metrics["wall_impacts"] > 0
+    assert r.kernel == "wall_body" and r.metrics["wall_impacts"] > 0
     path = tmp_path / "rock.toml"
     path.write_text('[body]\ntype = "rigid-body"\nvertices = [[0, 0], [1, 0], [0.8, 2.2], [0, 2.2]]\nmass = 1.0\n'
                     '[wall]\ngap = 0.05\nside = 1\n[excitation]\nkind = "one-sine"\namplitude = 2.5\n'

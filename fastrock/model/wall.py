@@ -14,14 +14,14 @@ from fastrock import _validate as V
 
 @dataclass(frozen=True)
 class Wall:
-    """A rigid vertical wall parallel to one face of a rectangular block.
+    """A rigid vertical wall parallel to one face of a block or a RigidBody.
 
     Parameters
     ----------
     gap : float
         Clear gap d [m] between the block's face and the wall at rest, >= 0.
         ``gap=0`` is Hogan's one-sided rocking (the block rests against the
-        wall and only rocks away from it).
+        wall and only rocks away from it, on the pivot away from the wall).
     side : {-1, +1}
         Side of the wall.  ``-1`` (default) puts it on the negative-theta
         side: a positive ground acceleration (which tips the block toward
@@ -36,8 +36,8 @@ class Wall:
         small-gap limit of the d > 0 model is Hogan's map with r = e^2 e_w
         (a ground impact, a wall impact and a second ground impact in quick
         succession): pass ``restitution = e**2 * e_w`` at d = 0 for a model
-        continuous in d.  Gaps with theta_w < 1e-7 rad run that limit
-        (docs: guide/models/wall).
+        continuous in d (``e12 * e21 * e_w`` for an asymmetric RigidBody).
+        Gaps with theta_w < 1e-7 rad run that limit (docs: guide/models/wall).
     friction : float
         Coulomb coefficient mu_w of the wall contact (static = kinetic),
         >= 0.  Default 0 (frictionless).  A positive value needs the contact
@@ -67,7 +67,10 @@ class Wall:
     be built with :meth:`RigidBlock.rectangle` or
     :meth:`RigidBlock.from_inertia` (whose outline is taken as a rectangle of
     half-dimensions R sin(alpha), R cos(alpha)).  Ground impacts keep the
-    body's Housner restitution e.
+    body's Housner restitution e.  An asymmetric :class:`RigidBody` needs
+    its outline: the face toward the wall is taken vertical above that side's
+    pivot, up to the top of the outline (:meth:`RigidBody.wall_face_top`);
+    it rocks with each side's alpha, p and impact map, the wall as above.
 
     Examples
     --------

@@ -42,6 +42,24 @@ def rigid_body_par(body):
     return par
 
 
+def wall_par(body, wall):
+    """Parameters of the wall model (kernels/wall.py): both sides' alpha, p and ground restitution
+    as in ``rigid_body_par`` (a RigidBlock fills both with its own), and the wall entries; the
+    contact angle from the body's wall-side face (:meth:`Wall.limit_angle`)."""
+    from fastrock.kernels import layout as K
+    from fastrock.model.rigid_body import RigidBody
+    if isinstance(body, RigidBody):
+        par = rigid_body_par(body)
+    else:
+        par = np.zeros(K.N_PAR_WALL)
+        par[: K.N_PAR_RIGID] = rigid_par(body)
+        par[K.P_ALPHA_NEG] = par[K.P_ALPHA]
+        par[K.P_P_NEG] = par[K.P_P]
+        par[K.P_E_NEG] = par[K.P_E]
+        par[K.P_IO_RATIO] = 1.0
+    return wall.fill_par(par, body)
+
+
 def flexible_par(body: FlexibleBody, sliding=False, n_par=None):
     from fastrock.kernels import layout as K
     par = np.zeros(n_par or K.N_PAR_FLEXIBLE)
@@ -94,7 +112,7 @@ def flexible_wall_par(body: FlexibleBody, wall):
     from fastrock.kernels import layout as K
     kind = wall.contact(body)
     if kind == "hogan":
-        raise ValueError("wall: gap = 0 (Hogan's one-sided rocking) is available for RigidBlock only; "
+        raise ValueError("wall: gap = 0 (Hogan's one-sided rocking) is available for RigidBlock and RigidBody only; "
                          "a FlexibleBody needs gap > 0")
     if wall.friction != 0.0:
         raise ValueError("wall: friction > 0 at the wall contact is not modelled yet (the wall is "

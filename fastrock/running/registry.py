@@ -245,8 +245,8 @@ def lookup(body, effects):
                     "carried unequally by its two corners")
             raise ValueError(
                 "an asymmetric RigidBody (b1 != b2 or h1 != h2) runs the two-sided rocking model, with "
-                "wall=, friction= and Friction(lift_off='flight') the contact model, and with "
-                "foundation=TwoSpringFoundation the two-spring model; "
+                "wall= alone the wall model, with friction= or Friction(lift_off='flight') (and a wall) the "
+                "contact model, and with foundation=TwoSpringFoundation the two-spring model; "
                 f"{', '.join(_EFFECT_FIELDS[k] for k in sorted(generic))} together is not available for it "
                 "yet; a symmetric RigidBody runs everywhere as its RigidBlock")
         if "foundation" in generic and kind != "rigid":
@@ -289,10 +289,8 @@ def _rigid_body(body, fx, mass):
 
 
 def _rigid_wall(body, fx, mass):
-    from fastrock.running.models import rigid_par
-    par = rigid_par(body)
-    fx["wall"].fill_par(par, body)
-    return par
+    from fastrock.running.models import wall_par
+    return wall_par(body, fx["wall"])
 
 
 def _rigid_friction(body, fx, mass):
@@ -323,14 +321,6 @@ def _flexible_flight(body, fx, mass):
 def _contact(body, fx, mass):
     from fastrock.running.models import contact_par
     return contact_par(body, fx.get("friction") or fx.get("flight"), fx.get("wall"))
-
-
-def _contact_body(body, fx, mass):
-    from fastrock.running.models import contact_par
-    from fastrock.model.friction import Friction
-    # a wall alone: a pivot that never slips (the contact model follows a lift-off into flight)
-    friction = fx.get("friction") or fx.get("flight") or Friction.never_slipping()
-    return contact_par(body, friction, fx.get("wall"))
 
 
 def _foundation(body, fx, mass):
@@ -367,6 +357,13 @@ register(Model(
     cli_options=_RIGID_CLI + _WALL_CLI, toml_keys=_RIGID_TOML + ("wall",),
     summary="rigid block rocking against a rear wall at a gap (one-sided)"))
 register(Model(
+    "wall_body", "wall", "rigid_body", frozenset({"wall"}), ("theta", "theta_dot"), _rigid_wall,
+    columns=("toward_wall", "max_rotation_toward_wall", "max_rotation_away_from_wall"),
+    outcomes=("safe", "mode1", "mode2", "leaning", "flight", "failed"),
+    cli_options=_WALL_CLI, toml_keys=("body", "wall"),
+    summary="asymmetric rigid body (RigidBody) rocking against a rear wall: the wall model with each "
+            "pivot its own alpha, p and impact restitution, gap 0 and short walls included"))
+register(Model(
     "rigid_friction", "friction", "rigid", frozenset({"friction"}),
     ("theta", "theta_dot", "d", "d_dot"), _rigid_friction, columns=_FRICTION_COLUMNS,
     outcomes=("safe", "slide", "mode1", "mode2", "flight", "failed"),
@@ -387,14 +384,14 @@ register(Model(
 # entry's own effects, so its results carry the flight metrics
 register(Model(
     "contact_body", "contact", "rigid_body", frozenset({"friction", "flight"}),
-    ("theta", "theta_dot", "d", "d_dot", "z", "z_dot"), _contact_body,
+    ("theta", "theta_dot", "d", "d_dot", "z", "z_dot"), _contact,
     toml_keys=("body", "wall", "friction"),
     summary="asymmetric rigid body (RigidBody, level base) in the contact model: rest, slide, rock, "
             "slide-rock, free flight and landing, wall impacts, each pivot its own alpha and impact map",
     columns=_FRICTION_COLUMNS + ("flights", "time_flight", "max_jump", "toward_wall", "max_rotation_toward_wall",
                                  "max_rotation_away_from_wall"),
     outcomes=("safe", "slide", "mode1", "mode2", "leaning", "failed"),
-    also=(frozenset({"friction"}), frozenset({"flight"}), frozenset({"wall"}), frozenset({"wall", "friction"}),
+    also=(frozenset({"friction"}), frozenset({"flight"}), frozenset({"wall", "friction"}),
           frozenset({"wall", "flight"}), frozenset({"wall", "friction", "flight"}))))
 register(Model(
     "flexible", "flexible", "flexible", frozenset(), ("u", "u_dot", "theta", "theta_dot"),

@@ -31,6 +31,8 @@ def _example(name):
         "rigid": (block, {}),
         "rigid_body": (RigidBody(mass=1.0, inertia=0.1, b1=0.15, h1=1.0, b2=0.25, h2=1.0), {}),
         "rigid_wall": (block, {"wall": Wall(gap=0.01)}),
+        "wall_body": (RigidBody.from_polygon([(0.0, 0.0), (0.5, 0.0), (0.1, 2.0)], mass=1.0),
+                      {"wall": Wall(gap=0.01)}),
         "rigid_friction": (block, {"friction": Friction(0.3)}),
         "contact": (block, {"wall": Wall(gap=0.01), "friction": Friction(0.3)}),
         "contact_body": (RigidBody(mass=1.0, inertia=0.1, b1=0.15, h1=1.0, b2=0.25, h2=1.0),
@@ -104,7 +106,7 @@ def is_ready(kernel):
 #: First-use cost [s] of a model's two entry kernels with an empty cache, measured with
 #: ``fastrock warmup`` on this project's 2-core machine under a load of about 3 (docs:
 #: guide/install, "Compilation and the kernel cache"); a quiet machine takes about two thirds of it.
-TYPICAL_COMPILE_SECONDS = {"rigid": 34, "rigid_body": 27, "rigid_wall": 31, "rigid_friction": 33, "contact": 67, "contact_body": 67,
+TYPICAL_COMPILE_SECONDS = {"rigid": 34, "rigid_body": 27, "rigid_wall": 31, "wall_body": 31, "rigid_friction": 33, "contact": 67, "contact_body": 67,
                            "flexible": 31, "flexible_friction": 43, "flexible_wall": 40, "flexible_flight": 52, "two_spring": 30, "switching": 30,
                            "linear_sdof": 29}
 
