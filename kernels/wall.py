@@ -129,9 +129,10 @@ from .layout import (D_MODE, D_PIVOT, D_STATIC, D_WALL_REST, EV_FLIGHT,
                      O_T0, RUNNING, SAFE_BOUNDED, SAFE_REST)
 from .rigid import (K_FLIGHT, K_IMPACT, K_OVERTURN, UPLIFT_RTOL, body_event,
                     body_ground_impact, body_rhs, body_start_rocking_or_rest,
-                    body_static_margin, housner,
+                    body_static_margin, housner, rhs,
                     init_state as rigid_init_state, observe, overturned,
                     peak_from_energy, track_rotation)
+from .rigid import event as rigid_event
 
 N_EVENTS = 6
 K_WALL = 5
@@ -191,16 +192,31 @@ def rigid_bounce_unresolved(r, post, alpha, p, opt):
 
 
 @jit_generic
+def wall_event(y, par, disc):
+    """Event K_WALL: theta reaches theta_w while pivoting on the near corner."""
+    w = par[P_WALL_SIDE]
+    if disc[D_PIVOT] == w:
+        return par[P_THETA_W] - w * y[0], -w * y[1], True
+    return np.inf, 0.0, True
+
+
+@jit_generic
 def event(k, t, y, par, disc, hdr, smp):
     # Inlined at the Numba-IR level: a separately compiled wrapper around
     # rigid.body_event adds a call layer to the hottest function of the
     # driver (every event at every step) and cost ~25% with an inert wall.
     if k == K_WALL:
-        w = par[P_WALL_SIDE]
-        if disc[D_PIVOT] == w:
-            return par[P_THETA_W] - w * y[0], -w * y[1], True
-        return np.inf, 0.0, True
+        return wall_event(y, par, disc)
     return body_event(k, t, y, par, disc, hdr, smp)
+
+
+@jit_generic
+def block_event(k, t, y, par, disc, hdr, smp):
+    # The symmetric block's events read one alpha, p (rigid.event): the
+    # per-side choice of body_event costs it ~14% per run.
+    if k == K_WALL:
+        return wall_event(y, par, disc)
+    return rigid_event(k, t, y, par, disc, hdr, smp)
 
 
 @jit
@@ -455,9 +471,23 @@ def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
 @jit
 def run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
         cnt):
+    """A run of the asymmetric body (each side's alpha, p in the rhs)."""
     disc = np.zeros(N_DISC, dtype=np.int64)
     init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
     return integrate_hybrid(body_rhs, event, transition, static_margin,
+                            after_step, N_EVENTS, y, par, disc, hdr, smp,
+                            opt, t_eval, met, hist_t, hist_y, hist_d, log,
+                            cnt)
+
+
+@jit
+def block_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+              log, cnt):
+    """A run of the symmetric block: the same maps, with the one-sided rhs
+    and events of :mod:`.rigid` (both sides' slots hold the same values)."""
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
+    return integrate_hybrid(rhs, block_event, transition, static_margin,
                             after_step, N_EVENTS, y, par, disc, hdr, smp,
                             opt, t_eval, met, hist_t, hist_y, hist_d, log,
                             cnt)
@@ -469,17 +499,26 @@ def rigid_wall_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                         hist_d, log, cnt):
     """One run against a wall, with time history and event log (see
     :func:`.rigid.rigid_simulate` for the arguments)."""
-    return run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
-               log, cnt)
+    return block_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                     hist_d, log, cnt)
 
 
 @jit_parallel
 def rigid_wall_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
     """One-sided runs in parallel (rows of Y0/PAR/HDR/OPT)."""
+    sweep_rows(block_run, Y0, PAR, HDR, smp, OPT, status, MET, YF)
+
+
+@jit
+def wall_body_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                       hist_d, log, cnt):
+    """One run of the asymmetric RigidBody against a wall (model
+    "wall_body"; the parameter vector carries both sides)."""
+    return run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+               log, cnt)
+
+
+@jit_parallel
+def wall_body_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Runs of the asymmetric body against a wall in parallel."""
     sweep_rows(run, Y0, PAR, HDR, smp, OPT, status, MET, YF)
-
-
-# the asymmetric RigidBody's registry entry (model "wall_body") runs the
-# same kernels: the parameter vector carries both sides
-wall_body_simulate = rigid_wall_simulate
-wall_body_sweep = rigid_wall_sweep

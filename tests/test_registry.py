@@ -45,7 +45,7 @@ def test_every_entry_names_its_kernels_and_columns():
     from fastrock.analyses.spectrum import SPECTRUM_COLUMNS
     assert set(registry.MODELS) == {"rigid", "rigid_body", "rigid_wall", "rigid_friction", "contact", "contact_body",
                                     "flexible",
-                                    "flexible_friction", "flexible_wall", "flexible_flight", "two_spring", "switching",
+                                    "flexible_friction", "flexible_wall", "flexible_flight", "two_spring", "switching", "wall_body",
                                     "linear_sdof"}
     for m in registry.MODELS.values():
         mod = m.load()

@@ -46,9 +46,11 @@ def test_the_registry_runs_the_wall_model():
     assert registry.select(BODY, fr.Wall(0.0)).name == "wall_body"
     assert registry.select(BODY, fr.Wall(0.05), fr.Friction(0.5)).name == "contact_body"
     assert registry.select(BODY, fr.Wall(0.05), fr.Friction.never_slipping()).name == "contact_body"
-    # the same kernels as the block's wall model
+    # the block's wall module, with its own entries: the per-side rhs and events (the block's
+    # entries keep rigid.rhs and rigid.event, which read one alpha and p)
     from fastrock.kernels import wall as W
-    assert W.wall_body_simulate is W.rigid_wall_simulate and W.wall_body_sweep is W.rigid_wall_sweep
+    assert registry.MODELS["wall_body"].module == registry.MODELS["rigid_wall"].module == "wall"
+    assert W.wall_body_simulate is not W.rigid_wall_simulate
     # both sides in the parameter vector; a block fills both with its own numbers
     par = registry.select(BODY, fr.Wall(0.05, side=1)).par
     assert par.size == L.N_PAR_WALL

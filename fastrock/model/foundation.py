@@ -48,7 +48,7 @@ import numpy as np
 
 from fastrock import _validate as V
 from fastrock.model.bodies import RigidBlock
-from fastrock.model.rigid_body import RigidBody
+from fastrock.model.rigid_body import RigidBody, level_base_height
 # the kernels' parameter layout (kernels/layout.py imports no kernel)
 from fastrock.kernels.layout import (N_PAR_FOUNDATION as N_PAR, P_ALPHA_LEFT, P_B, P_B_SKEW, P_CT,
                                      P_CV, P_EF, P_H, P_I_0, P_I_C, P_I_G, P_KT, P_KV, P_MASS,
@@ -152,7 +152,6 @@ def block_inertia(body, mass=None):
 
 def _body_inertia(body, mass):
     """BlockInertia of an asymmetric RigidBody with a level base (mass ``mass``)."""
-    from fastrock.running.models import level_base_height
     h = level_base_height(body, "foundation= needs",
                           "the foundation's corner springs stand on one line through both pivots")
     M = mass

@@ -11,6 +11,7 @@ import numpy as np
 
 from fastrock.model.bodies import IMPACT_MAPS, FlexibleBody, RigidBlock
 from fastrock.model.friction import LIFT_OFF
+from fastrock.model.rigid_body import level_base_height
 
 
 def rigid_par(body: RigidBlock):
@@ -186,22 +187,6 @@ def contact_par(body, friction, wall=None):
         par[K.C_GAP] = wall.gap
         par[K.C_MU_W] = wall.friction
     return par
-
-
-#: A RigidBody's two base heights h1, h2 count as one level base within this relative tolerance
-#: (a polygon's lowest facet gives them equal up to rounding).
-LEVEL_BASE_RTOL = 1e-9
-
-
-def level_base_height(body, needs, why):
-    """h of a RigidBody with a level base (h1 = h2 to LEVEL_BASE_RTOL), else a ValueError saying
-    what ``needs`` it and ``why``."""
-    h1, h2 = body.h1, body.h2
-    if abs(h1 - h2) > LEVEL_BASE_RTOL * max(h1, h2):
-        raise ValueError(f"h1 = {h1:.6g} m and h2 = {h2:.6g} m differ: {needs} a level base (h1 = h2; {why}); "
-                         f"a RigidBody from a polygon or a mesh rests on its lowest facet and has one. "
-                         f"Without those effects it runs in the rocking model")
-    return 0.5 * (h1 + h2)
 
 
 def _contact_body_geometry(par, body, wall):
