@@ -606,7 +606,8 @@ def sign_of(v):
 @jit
 def rhs(t, y, par, disc, hdr, smp, out):
     acc = np.empty(3)
-    if disc[D_MODE] == MODE_FLIGHT or disc[D_STATIC] == 1:
+    if (disc[D_MODE] == MODE_FLIGHT and disc[D_CS2] == CS_OPEN) or \
+            disc[D_STATIC] == 1:
         bx, by, bw = free_acc(t, par, hdr, smp)
         acc[0] = bx
         acc[1] = by
@@ -664,6 +665,26 @@ def closed_wall_force(t, y, par, disc, hdr, smp):
 
 
 @jit
+def wall_flight_event(k, t, y, par, disc, hdr, smp):
+    """Flight with the wall contact closed on a frictional wall: K_STICK,
+    the slip along the wall stopping (sigma_w v_tw); K_SLIP, a sticking
+    wall point leaving its cone (mu_w N_w - |F_w|)."""
+    cs2 = disc[D_CS2]
+    kw = K_NEAR if wall_base(cs2) else 2
+    acc = np.empty(3)
+    _ok, _N0, _F0, _N1, _F1, N2, F2 = mode_solve(
+        t, y, par, CS_OPEN, CS_OPEN, cs2, hdr, smp, acc)
+    sw = wall_sigma(cs2)
+    if k == K_STICK and sw != 0:
+        _an, atw = contact_acc(kw, y, par, acc)
+        _g, _vn, vtw = point_kin(kw, y, par)
+        return sw * vtw, sw * atw, True
+    if k == K_SLIP and (cs2 == CS_TOP_STICK or cs2 == CS_BASE_STICK):
+        return par[C_MU_W] * N2 - abs(F2), 0.0, True
+    return np.inf, 0.0, True
+
+
+@jit
 def event(k, t, y, par, disc, hdr, smp):
     mode = disc[D_MODE]
     s = disc[D_PIVOT]
@@ -672,6 +693,8 @@ def event(k, t, y, par, disc, hdr, smp):
         # slide-rocking on the far corner); while it rests on the wall
         # (ladder mode), the wall's normal force reaching 0
         if mode == MODE_FLIGHT:
+            if wall_base(disc[D_CS2]):
+                return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
             g, gd = approach_gap(K_NEAR, y, par)
             return g, gd, True
         if mode != MODE_ROCK and mode != MODE_SLIDE_ROCK:
@@ -708,6 +731,13 @@ def event(k, t, y, par, disc, hdr, smp):
         if k == K_PASS_ALPHA:
             sg = 1.0 if y[0] >= 0.0 else -1.0
             return alpha_of(sg, par) - abs(y[0]), -sg * y[1], False
+        cs2 = disc[D_CS2]
+        if k == K_WALL and wall_top(cs2):
+            # flight with the top corner on the wall: the wall's force
+            # reaching 0
+            return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
+        if (k == K_STICK or k == K_SLIP) and cs2 != CS_OPEN:
+            return wall_flight_event(k, t, y, par, disc, hdr, smp)
         if k == K_LAND0 or k == K_LAND1 or k == K_WALL:
             if k == K_WALL and not wall_active(par):
                 return np.inf, 0.0, True
@@ -2114,6 +2144,80 @@ def at_face(y, par):
 
 
 @jit
+def pick_wall_flight(kw, t, y, par, disc, hdr, smp, stick):
+    """In flight with wall point kw (2 top corner, K_NEAR the wall-side
+    base corner) at the wall and not approaching it: the wall contact
+    closed while the wall pushes (N_w > 0 in the mode solve with both base
+    corners open), else free flight.  On a frictional wall the point
+    sticks if its tangential velocity is 0 (stick = 1: it has just
+    reached 0; stick = -1: it has just left the cone, no stick) and
+    |F_w| <= mu_w N_w, else slips (along its velocity, or from rest in
+    -sgn F_w, then the other way, not reversed)."""
+    s = disc[D_PIVOT]
+    acc = np.empty(3)
+    cand = np.empty(3, dtype=np.int64)
+    nc = 1
+    cand[0] = wall_state(kw, 0)
+    if wall_frictional(par):
+        _g, _vn, vtw = point_kin(kw, y, par)
+        if stick == 1 or (stick == 0 and abs(vtw) <= V_TOL):
+            ok, _N0, _F0, _N1, _F1, N2, F2 = mode_solve(
+                t, y, par, CS_OPEN, CS_OPEN, wall_state(kw, 1), hdr, smp,
+                acc)
+            sw = -1 if F2 > 0.0 else 1
+            if stick == 1 and ok and N2 > 0.0 and \
+                    abs(F2) <= par[C_MU_W] * N2:
+                nc = 0
+                cand[0] = wall_state(kw, 1)
+            else:
+                cand[0] = wall_state(kw, 2 * sw)
+                cand[1] = wall_state(kw, -2 * sw)
+                nc = 2
+        else:
+            cand[0] = wall_state(kw, 2 * sign_of(vtw))
+    if nc == 0:
+        set_contacts(disc, CS_OPEN, CS_OPEN, cand[0])
+        disc[D_PIVOT] = s
+        return
+    for i in range(nc):
+        ok, _N0, _F0, _N1, _F1, N2, _F2 = mode_solve(
+            t, y, par, CS_OPEN, CS_OPEN, cand[i], hdr, smp, acc)
+        sw = wall_sigma(cand[i])
+        _an, atw = contact_acc(kw, y, par, acc)
+        if ok and N2 > 0.0 and (nc == 1 or sw * atw >= 0.0):
+            set_contacts(disc, CS_OPEN, CS_OPEN, cand[i])
+            disc[D_PIVOT] = s
+            return
+    set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+    disc[D_PIVOT] = s
+
+
+@jit
+def close_wall_in_flight(kw, t, y, par, disc, hdr, smp, log, cnt):
+    """The rest rule of physics.md 7 for wall impacts in flight: wall
+    impacts closer than eps_t, or a rebound slower than eps_omega times
+    the body's size, close the wall contact.  Under a push toward the wall
+    the rebounds of e_w < 1 shrink geometrically and accumulate at a finite
+    time (a Zeno sequence; at e_w = 0, or at the accumulation point, the
+    free flight pushes the point back into the wall at once); the rule cuts
+    that tail.  A plastic impact of the wall point (its normal velocity to
+    0, Routh's with mu_w on a frictional wall) only dissipates; then
+    ``pick_wall_flight``."""
+    post = np.empty(3)
+    vgx, vgy = cm_velocity(y, par)
+    post[0] = vgx
+    post[1] = vgy
+    post[2] = y[1]
+    imp = np.zeros(4)
+    point_impulse(kw, y, par, post, 0.0, par[C_MU_W], par[C_MU_W], imp, 0)
+    set_cm_velocity(y, par, post[0], post[1], post[2])
+    pick_wall_flight(kw, t, y, par, disc, hdr, smp, 0)
+    if disc[D_CS2] != CS_OPEN:
+        log_event(log, cnt, t, EV_WALL_REST, y[1], y[1], y[0], disc[D_PIVOT])
+    return RUNNING
+
+
+@jit
 def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
     """Wall point kw (2: the top corner, K_NEAR: the wall-side base corner)
     reached the wall (frictionless; mu_w > 0: ``wall_pivot_impact_fr``, and
@@ -2131,6 +2235,11 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
     if mode == MODE_SLIDE or at_face(y, par):
         return face_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
                            True)
+    if mode == MODE_FLIGHT and disc[D_CS2] != CS_OPEN:
+        # the other wall point reached the wall: the closed one opens (the
+        # impact below is the new point's alone)
+        set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+        disc[D_PIVOT] = s
     stw = CS_WALL_BASE if kw == K_NEAR else CS_FREE
     if mode == MODE_ROCK:
         # the pivot sticks: its velocity is 0 up to the integration drift,
@@ -2199,6 +2308,10 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
             return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
                                False)
     if mode == MODE_FLIGHT:
+        _g, vn_post, _vt = point_kin(kw, y, par)
+        if chatter or abs(vn_post) < opt[O_EPS_OMEGA] * hmid(par):
+            return close_wall_in_flight(kw, t, y, par, disc, hdr, smp, log,
+                                        cnt)
         return RUNNING
     if kw == K_NEAR:
         if separated:
@@ -2352,6 +2465,32 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return overturned(t, y[0], y[1], s, met, log, cnt)
     if k == K_IMPACT:
         return ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
+    if mode == MODE_FLIGHT and disc[D_CS2] != CS_OPEN:
+        kw = K_NEAR if wall_base(disc[D_CS2]) else 2
+        if (k == K_WALL and kw == 2) or (k == K_WALL_BASE and kw == K_NEAR):
+            # the wall's force reached 0: free flight
+            set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+            disc[D_PIVOT] = s
+            log_event(log, cnt, t, EV_WALL_RELEASE, y[1], y[1], y[0], s)
+            return RUNNING
+        if k == K_STICK:
+            _g, _vn, vtw = point_kin(kw, y, par)
+            # the slip along the wall stopped: v_tw = 0 (up to the event's
+            # location), taken as the wall's tangential impulse stopping it
+            vgx, vgy = cm_velocity(y, par)
+            wtt, wtn, wnn, jt, jn = point_inertia(kw, y[0], par)
+            pt = -vtw / wtt
+            set_cm_velocity(y, par, vgx, vgy + pt, y[1] + jt * pt / par[C_IG])
+            pick_wall_flight(kw, t, y, par, disc, hdr, smp, 1)
+            return RUNNING
+        if k == K_SLIP:
+            pick_wall_flight(kw, t, y, par, disc, hdr, smp, -1)
+            return RUNNING
+        if k == K_LAND0 or k == K_LAND1:
+            # the landing's impulse is the base corner's alone; a wall
+            # contact it closes again is a wall impact
+            set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+            disc[D_PIVOT] = s
     if k == K_LAND0 or k == K_LAND1:
         return landing(k - K_LAND0, t, y, par, disc, hdr, smp, opt, met, log,
                        cnt)
