@@ -12,7 +12,7 @@ spectrum grid):
 ``error:<Exception>``     the front end raised on a scene the draw considers valid
 ``violated:<invariant>``  an invariant failed on this cell (list below)
 
-flexible_friction: a fixed-step cell that ends ``failed:unstable-step`` is counted under
+flexible_friction, contact: a fixed-step cell that ends ``failed:unstable-step`` is counted under
 ``reported`` as ``unstable_step_named`` (a numerical limit the user set, not a failure) only when
 the error is honest: ``simulate``'s warning names a step that "would be stable" and the cell run
 at that step ends definite (``unstable_step_named``); otherwise it stays ``failed:unstable-step``.
@@ -507,8 +507,11 @@ def _pair_check(res, name, P, cells, run_a, run_b, outcome_only=False, skip=None
     for k in cells:
         if k not in A or k not in B:
             continue
-        if any(t.startswith(("failed", "hang", "error")) for t in res.tags.get(k, ())):
-            res.skipped[name] += 1          # the main run failed already: counted there
+        if any(t.startswith(("failed", "hang", "error")) for t in res.tags.get(k, ())) or \
+                any(d.startswith("unstable_step_named") for d in res.details.get(k, ())):
+            # the main run failed already, or stopped at the unstable fixed step the user set
+            # (reported): counted there
+            res.skipped[name] += 1
             continue
         a, b = A[k], B[k]
         if skip is not None and skip(a, b):
@@ -687,7 +690,9 @@ def unstable_step_named(P, key, limit=None):
     step that "would be stable" (the kernel's M_DT_STABLE), and the same cell at that step ends
     with a definite status.  Returns the detail then, else None (flexible_friction family: its
     held lift-offs slide the light base, whose mode is about sqrt((1 + mb)/mb) times stiffer than
-    omega_n, the frequency the fuzz draws dt from)."""
+    omega_n, the frequency the fuzz draws dt from; contact family: contact:2026:27, a pulse of
+    29 g at dt = 2 pi/omega_p/111, unstable in the first step after the uplift, definite at the
+    named dt)."""
     from fastrock import Pulse, simulate
     kw = build_scene(P, 1.0, None)
     body = kw.pop("body")
@@ -863,7 +868,7 @@ def run_batch(P, time_limit=120.0, checks=True, sims=True):
                 res.cases[k] = {"status": r["status"], "outcome": r["outcome"],
                                 "max_rotation_ratio": float(r["max_rotation_ratio"]),
                                 "time_end": float(r["time_end"])}
-                if r["status"] == "failed:unstable-step" and fam == "flexible_friction":
+                if r["status"] == "failed:unstable-step" and fam in ("flexible_friction", "contact"):
                     why = unstable_step_named(P, k, time_limit)
                     if why is not None:
                         res.reported["unstable_step_named"] += 1
