@@ -607,7 +607,7 @@ def sign_of(v):
 def rhs(t, y, par, disc, hdr, smp, out):
     acc = np.empty(3)
     if (disc[D_MODE] == MODE_FLIGHT and disc[D_CS2] == CS_OPEN) or \
-            disc[D_STATIC] == 1:
+            disc[D_STATIC] == 1 or face_flight(disc):
         bx, by, bw = free_acc(t, par, hdr, smp)
         acc[0] = bx
         acc[1] = by
@@ -615,6 +615,10 @@ def rhs(t, y, par, disc, hdr, smp, out):
         if disc[D_STATIC] == 1:
             acc[0] = 0.0
             acc[1] = 0.0
+            acc[2] = 0.0
+        elif face_flight(disc):
+            # the face on the wall holds x and theta
+            acc[0] = 0.0
             acc[2] = 0.0
     else:
         mode_solve(t, y, par, disc[D_CS0], disc[D_CS1], disc[D_CS2], hdr, smp,
@@ -693,6 +697,8 @@ def event(k, t, y, par, disc, hdr, smp):
         # slide-rocking on the far corner); while it rests on the wall
         # (ladder mode), the wall's normal force reaching 0
         if mode == MODE_FLIGHT:
+            if face_flight(disc):
+                return face_push(t, par, hdr, smp), 0.0, True
             if wall_base(disc[D_CS2]):
                 return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
             g, gd = approach_gap(K_NEAR, y, par)
@@ -1586,13 +1592,17 @@ def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         post[2] = om + (ry * pt - rx * pn) / iG
         vn_post = vn + wtn * pt + wnn * pn
         separates = vn_post > 1e-9 * abs(vn)
-    # the other corner: on the ground and penetrating -> flat landing
+    # the other corner: on the ground and penetrating -> flat landing; or
+    # reaching it together with j (a flat base coming down: a two-point
+    # impact, whichever corner's event fired first, so that mirror images
+    # land alike)
     o = 1 - j
     bw = par[C_B1] + par[C_B2]
+    _g, vn_o_pre, _vt = point_kin(o, y, par)
     tmp = y.copy()
     set_cm_velocity(tmp, par, post[0], post[1], post[2])
     gap_o, vn_o, _vt_o = point_kin(o, tmp, par)
-    flat = gap_o <= FLAT_RTOL * bw and vn_o < 0.0
+    flat = gap_o <= FLAT_RTOL * bw and (vn_o < 0.0 or vn_o_pre < 0.0)
     if flat:
         _g, _vn, vt = point_kin(0, y, par)
         ok, N0, F0, N1, F1, _N2, _F2 = solve_contacts(
@@ -2108,6 +2118,13 @@ def face_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, count_wall):
     vx = vgx
     if w * vx > 0.0:
         vx = -par[P_E_W] * vx
+    g0, _vn, _vt = point_kin(0, y, par)
+    g1, _vn, _vt = point_kin(1, y, par)
+    if (disc[D_MODE] == MODE_FLIGHT and not wall_frictional(par)
+            and min(g0, g1) > FLAT_RTOL * (par[C_B1] + par[C_B2])):
+        return face_impact_in_flight(t, y, par, disc, hdr, smp, opt, met, log,
+                                     cnt, vx, vgy, before, chatter, pre,
+                                     count_wall)
     ln = max(0.0, -vgy)
     if not np.isfinite(par[C_MU_K]):
         vx = 0.0
@@ -2130,6 +2147,58 @@ def face_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, count_wall):
     if disc[D_MODE] == MODE_REST:
         log_event(log, cnt, t, EV_WALL_REST, pre, 0.0, 0.0, 0)
     return st
+
+
+@jit
+def face_impact_in_flight(t, y, par, disc, hdr, smp, opt, met, log, cnt, vx,
+                          vgy, before, chatter, pre, count_wall):
+    """The face reaches the wall in flight, the base above the ground (a
+    frictionless wall): the face stops turning (theta = theta' = 0, the
+    CM's height and vertical velocity kept), its horizontal velocity vx
+    (toward the wall reversed with e_w by the caller; below the rest
+    rule's speed, or in chatter, 0).  The kinetic energy becomes
+    (vx^2 + v_Gy^2) / 2: never more.  Pushed toward the wall (q = -w a_g
+    > 0) at vx = 0, the body flies on with the face on the wall (face
+    flight: x_G'' = 0, theta'' = 0, y_G'' = -G), until the push ends
+    (K_WALL_BASE) or the base lands flat (then ``pick_flat``, face
+    rest); else free flight."""
+    w = par[P_WALL_SIDE]
+    s = disc[D_PIVOT]
+    if chatter or abs(vx) < opt[O_EPS_OMEGA] * hmid(par):
+        vx = 0.0
+    hm = hmid(par)
+    zg = y[4] + hm * math.cos(y[0])
+    y[0] = 0.0
+    y[1] = 0.0
+    y[2] = w * par[C_GAP]
+    y[3] = vx
+    y[4] = zg - hm
+    y[5] = vgy
+    check_energy(before, kinetic_energy(y, par), met)
+    if count_wall:
+        log_event(log, cnt, t, EV_WALL_IMPACT, pre, 0.0, 0.0, s)
+    set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+    disc[D_PIVOT] = s
+    if vx == 0.0 and face_push(t, par, hdr, smp) > 0.0:
+        set_contacts(disc, CS_OPEN, CS_OPEN, CS_WALL_BASE)
+        disc[D_PIVOT] = s
+        disc[D_WALL_REST] = 1
+        log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, 0.0, s)
+    return RUNNING
+
+
+@jit
+def face_push(t, par, hdr, smp):
+    """The d'Alembert force's component toward the wall, -w a_g."""
+    ag, _av = ground(t, hdr, smp)
+    return -par[P_WALL_SIDE] * ag
+
+
+@jit
+def face_flight(disc):
+    """Flight with the face on the wall (``face_impact_in_flight``)."""
+    return (disc[D_MODE] == MODE_FLIGHT and disc[D_CS2] == CS_WALL_BASE
+            and disc[D_WALL_REST] == 1)
 
 
 @jit

@@ -75,6 +75,31 @@ def test_flight_on_a_frictionless_wall_matches_solve_ivp():
     assert (kinds == L.EV_WALL_IMPACT).sum() <= 2 and (kinds == L.EV_WALL_REST).sum() == 1
 
 
+def test_face_reaching_the_wall_in_flight_slides_down_it_and_lands_flat():
+    """The same release at a plastic wall (e_w = 0), run on: the face reaches the wall in flight
+    (theta = 0) with the base above the ground; it stops turning and, still pushed, slides down the frictionless wall (face
+    flight: y_G'' = -g throughout, as in the free fall, since the wall's force is horizontal), lands
+    flat at t = sqrt(2 (y_G0 - h) / g) and rests against the wall.  (Formerly the face impact put the
+    block on the ground at once, whatever its height.)"""
+    b, h, g = BODY.b, BODY.h, BODY.g
+    th0 = 0.1
+    gap = b * math.cos(th0) + h * math.sin(th0) - b
+    par = cpar(BODY, 0.5, gap=gap, side=1, e_w=0.0)
+    yg0 = b * math.sin(th0) + h * math.cos(th0) + 1.0
+    y0 = start_in_flight(par, th0, 0.0, 0.0, 0.0, yg0)
+    pulse = Pulse(0.5, sign=-1, kind="rectangular", duration=2.0)
+    t_land = math.sqrt(2 * (yg0 - h) / g)
+    code, t, y, d, log = run_eval(par, pulse, y0, [0.9 * t_land, 3.0], 3.0)
+    kinds = log[:, L.LOG_KIND]
+    face = log[(kinds == L.EV_WALL_IMPACT) & (log[:, L.LOG_THETA] == 0.0)]
+    assert len(face) == 1 and face[0, L.LOG_T] < 0.9 * t_land
+    assert d[0, 0] == L.MODE_FLIGHT and y[0, 0] == 0.0 and y[0, 2] == gap
+    assert y[0, 4] + h == pytest.approx(yg0 - 0.5 * g * (0.9 * t_land) ** 2, rel=1e-9)
+    landing = log[kinds == L.EV_CONTACT]
+    assert len(landing) == 1 and landing[0, L.LOG_T] == pytest.approx(t_land, rel=1e-9)
+    assert code == L.SAFE_REST and np.all(y[1] == [0.0, 0.0, gap, 0.0, 0.0, 0.0])
+
+
 def _fuzz_cell(b, h, pulse_kind, wall, friction, rtol, a, f, sign):
     body = RigidBlock.rectangle(b, h)
     p = Pulse(a, f, sign, pulse_kind, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
@@ -120,3 +145,18 @@ def test_fuzz_reproductions_end_definite_and_never_gain_energy(name, scene, cell
         assert (E[same + 1] - E[same]).max(initial=0.0) <= 1e-6 * scale
         free = t >= p.end_time(body)
         assert np.diff(E[free]).max(initial=0.0) <= (1e-6 + 100 * rtol) * scale
+
+
+def test_flat_landing_after_a_face_impact_in_flight_is_mirror_symmetric():
+    """contact:2026:61 (9.117, 11.419): the face reaches the wall in flight moving away from it and
+    the block lands flat while sliding.  Both base corners reach the ground together; the landing is
+    the two-point impact whichever corner's event fired first, so (wall side s, sign +1) and (side -s,
+    sign -1) are mirror images (formerly the left corner's single impact first: rocking on one side,
+    flat on the other)."""
+    b, h, kind, (gap, side, e_w), (mu_s, mu_k), rtol = CELLS[1][1]
+    fr = Friction(mu_s, mu_k, lift_off="stop")
+    a, f = 9.117288184327137, 11.418747447358827
+    _body, _p, r1 = _fuzz_cell(b, h, kind, Wall(gap=gap, side=side, restitution=e_w), fr, rtol, a, f, 1)
+    _body, _p, r2 = _fuzz_cell(b, h, kind, Wall(gap=gap, side=-side, restitution=e_w), fr, rtol, a, f, -1)
+    assert r1.status == r2.status and not r1.status.startswith("failed")
+    assert r1.metrics["max_rotation"] == pytest.approx(r2.metrics["max_rotation"], rel=1e-6)
