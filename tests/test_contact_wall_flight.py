@@ -48,20 +48,28 @@ def run_eval(par, pulse, y0, t_eval, t_end, rtol=1e-11):
     return int(code), ht[:k], hy[:k], hd[:k], log[:int(cnt[C_NLOG])]
 
 
+def _released_at_the_wall(e_w):
+    """At rest in flight at theta0 = 0.1 (toward a frictionless wall on the right, e_w given) with
+    the top corner touching it and the base 1 m above the ground; a rectangular pulse of 0.5 g for
+    2 s pushes the block toward the wall."""
+    b, h = BODY.b, BODY.h
+    th0 = 0.1
+    gap = b * math.cos(th0) + h * math.sin(th0) - b
+    par = cpar(BODY, 0.5, gap=gap, side=1, e_w=e_w)
+    yg0 = b * math.sin(th0) + h * math.cos(th0) + 1.0
+    y0 = start_in_flight(par, th0, 0.0, 0.0, 0.0, yg0)
+    return th0, gap, par, yg0, y0, Pulse(0.5, sign=-1, kind="rectangular", duration=2.0)
+
+
 def test_flight_on_a_frictionless_wall_matches_solve_ivp():
     """Released in flight at rest with the top corner touching the wall, pushed toward it by a
     rectangular pulse (a_g = -0.5 g): the first wall impact is at zero speed, the rule closes the
     contact, and theta, theta', x_G, y_G follow the reference to 1e-7 until the face nears the wall."""
     b, h, g = BODY.b, BODY.h, BODY.g
-    th0 = 0.1
-    gap = b * math.cos(th0) + h * math.sin(th0) - b
-    par = cpar(BODY, 0.5, gap=gap, side=1, e_w=0.5)
-    yg0 = b * math.sin(th0) + h * math.cos(th0) + 1.0
-    y0 = start_in_flight(par, th0, 0.0, 0.0, 0.0, yg0)
+    th0, gap, par, yg0, y0, pulse = _released_at_the_wall(0.5)
     t_out = [0.03, 0.06, 0.09, 0.12, 0.15]
     ref = REF.flight_on_wall(b, h, g, th0, yg0, -0.5 * g, t_out)
     assert ref["N_w"].min() > 0.0 and ref["theta"][-1] > 0.02
-    pulse = Pulse(0.5, sign=-1, kind="rectangular", duration=2.0)
     _code, t, y, d, log = run_eval(par, pulse, y0, t_out, 0.16)
     assert np.allclose(t, t_out)
     hm = 0.5 * (par[C.C_H1] + par[C.C_H2])
@@ -81,13 +89,8 @@ def test_face_reaching_the_wall_in_flight_slides_down_it_and_lands_flat():
     flight: y_G'' = -g throughout, as in the free fall, since the wall's force is horizontal), lands
     flat at t = sqrt(2 (y_G0 - h) / g) and rests against the wall.  (Formerly the face impact put the
     block on the ground at once, whatever its height.)"""
-    b, h, g = BODY.b, BODY.h, BODY.g
-    th0 = 0.1
-    gap = b * math.cos(th0) + h * math.sin(th0) - b
-    par = cpar(BODY, 0.5, gap=gap, side=1, e_w=0.0)
-    yg0 = b * math.sin(th0) + h * math.cos(th0) + 1.0
-    y0 = start_in_flight(par, th0, 0.0, 0.0, 0.0, yg0)
-    pulse = Pulse(0.5, sign=-1, kind="rectangular", duration=2.0)
+    h, g = BODY.h, BODY.g
+    _th0, gap, par, yg0, y0, pulse = _released_at_the_wall(0.0)
     t_land = math.sqrt(2 * (yg0 - h) / g)
     code, t, y, d, log = run_eval(par, pulse, y0, [0.9 * t_land, 3.0], 3.0)
     kinds = log[:, L.LOG_KIND]
