@@ -80,7 +80,14 @@ reaches 0 (event K_LIFT) and ends with a landing at the corner that
 reaches the ground first moving down (K_LAND0, K_LAND1): plastic normal
 impact with Coulomb friction (stick if |L_t| <= mu_s L_n, else Routh's
 incremental slipping impact), flat two-point landing when the other
-corner is on the ground and would penetrate.  Ground impacts while rocking
+corner is on the ground and would penetrate (or reaches it together with
+the landing corner).  In flight, wall impacts that chatter (closer than
+eps_t, or a rebound below eps_omega times the size) close the wall
+contact (``close_wall_in_flight``): the flight goes on with it closed
+(mode solve, both base corners open) until the wall's force reaches 0
+(K_WALL, K_WALL_BASE) or a landing; the face reaching the wall in flight
+stops turning and, pushed, slides down it (face flight, ended by the push
+reaching 0 or the flat landing).  Ground impacts while rocking
 (theta crosses 0) use the map of kernels/friction.py with the sides apart
 (``corner_impact``: restitution e of the impact, algebraic slip rule,
 Routh's method where it fails), so mu = inf reproduces kernels/rigid.py
@@ -92,15 +99,20 @@ Events (g > 0 admissible; inactive ones return inf)
 ---------------------------------------------------
   0 K_IMPACT      s theta                 ROCK, SLIDE_ROCK
   1 K_OVERTURN    theta_over - s theta    (FLIGHT: theta_over - |theta|)
-  2 K_SLIP        mu_s N - |F|            ROCK
-  3 K_STICK       sigma v_t               SLIDE, SLIDE_ROCK
+  2 K_SLIP        mu_s N - |F|            ROCK (FLIGHT, wall point sticking
+                                          on a frictional wall: mu_w N_w - |F_w|)
+  3 K_STICK       sigma v_t               SLIDE, SLIDE_ROCK (FLIGHT, wall
+                                          point slipping: sigma_w v_tw)
   4 K_LIFT        N (SLIDE: min N_k)      contact modes
   5 K_PEAK        s theta'                observer
   6 K_PASS_ALPHA  alpha - s theta         observer (FLIGHT: alpha - |theta|)
   7 K_LAND0       height of corner 0 while it moves down (inf otherwise)
   8 K_LAND1       height of corner 1 while it moves down
   9 K_APEX        vertical CM velocity    FLIGHT observer (jump height)
- 10 K_WALL        wall gap of the wall corner while it approaches
+ 10 K_WALL        wall gap of the wall corner while it approaches (closed
+                  in a ladder or in flight: the wall's force)
+ 11 K_WALL_BASE   the same for the wall-side base corner (face flight: the
+                  push toward the wall, -w a_g)
 
 Parameters (``par``, N_PAR entries)
 -----------------------------------
