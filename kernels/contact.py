@@ -80,7 +80,14 @@ reaches 0 (event K_LIFT) and ends with a landing at the corner that
 reaches the ground first moving down (K_LAND0, K_LAND1): plastic normal
 impact with Coulomb friction (stick if |L_t| <= mu_s L_n, else Routh's
 incremental slipping impact), flat two-point landing when the other
-corner is on the ground and would penetrate.  Ground impacts while rocking
+corner is on the ground and would penetrate (or reaches it together with
+the landing corner).  In flight, wall impacts that chatter (closer than
+eps_t, or a rebound below eps_omega times the size) close the wall
+contact (``close_wall_in_flight``): the flight goes on with it closed
+(mode solve, both base corners open) until the wall's force reaches 0
+(K_WALL, K_WALL_BASE) or a landing; the face reaching the wall in flight
+stops turning and, pushed, slides down it (face flight, ended by the push
+reaching 0 or the flat landing).  Ground impacts while rocking
 (theta crosses 0) use the map of kernels/friction.py with the sides apart
 (``corner_impact``: restitution e of the impact, algebraic slip rule,
 Routh's method where it fails), so mu = inf reproduces kernels/rigid.py
@@ -92,15 +99,20 @@ Events (g > 0 admissible; inactive ones return inf)
 ---------------------------------------------------
   0 K_IMPACT      s theta                 ROCK, SLIDE_ROCK
   1 K_OVERTURN    theta_over - s theta    (FLIGHT: theta_over - |theta|)
-  2 K_SLIP        mu_s N - |F|            ROCK
-  3 K_STICK       sigma v_t               SLIDE, SLIDE_ROCK
+  2 K_SLIP        mu_s N - |F|            ROCK (FLIGHT, wall point sticking
+                                          on a frictional wall: mu_w N_w - |F_w|)
+  3 K_STICK       sigma v_t               SLIDE, SLIDE_ROCK (FLIGHT, wall
+                                          point slipping: sigma_w v_tw)
   4 K_LIFT        N (SLIDE: min N_k)      contact modes
   5 K_PEAK        s theta'                observer
   6 K_PASS_ALPHA  alpha - s theta         observer (FLIGHT: alpha - |theta|)
   7 K_LAND0       height of corner 0 while it moves down (inf otherwise)
   8 K_LAND1       height of corner 1 while it moves down
   9 K_APEX        vertical CM velocity    FLIGHT observer (jump height)
- 10 K_WALL        wall gap of the wall corner while it approaches
+ 10 K_WALL        wall gap of the wall corner while it approaches (closed
+                  in a ladder or in flight: the wall's force)
+ 11 K_WALL_BASE   the same for the wall-side base corner (face flight: the
+                  push toward the wall, -w a_g)
 
 Parameters (``par``, N_PAR entries)
 -----------------------------------
@@ -606,7 +618,8 @@ def sign_of(v):
 @jit
 def rhs(t, y, par, disc, hdr, smp, out):
     acc = np.empty(3)
-    if disc[D_MODE] == MODE_FLIGHT or disc[D_STATIC] == 1:
+    if (disc[D_MODE] == MODE_FLIGHT and disc[D_CS2] == CS_OPEN) or \
+            disc[D_STATIC] == 1 or face_flight(disc):
         bx, by, bw = free_acc(t, par, hdr, smp)
         acc[0] = bx
         acc[1] = by
@@ -614,6 +627,10 @@ def rhs(t, y, par, disc, hdr, smp, out):
         if disc[D_STATIC] == 1:
             acc[0] = 0.0
             acc[1] = 0.0
+            acc[2] = 0.0
+        elif face_flight(disc):
+            # the face on the wall holds x and theta
+            acc[0] = 0.0
             acc[2] = 0.0
     else:
         mode_solve(t, y, par, disc[D_CS0], disc[D_CS1], disc[D_CS2], hdr, smp,
@@ -664,6 +681,26 @@ def closed_wall_force(t, y, par, disc, hdr, smp):
 
 
 @jit
+def wall_flight_event(k, t, y, par, disc, hdr, smp):
+    """Flight with the wall contact closed on a frictional wall: K_STICK,
+    the slip along the wall stopping (sigma_w v_tw); K_SLIP, a sticking
+    wall point leaving its cone (mu_w N_w - |F_w|)."""
+    cs2 = disc[D_CS2]
+    kw = K_NEAR if wall_base(cs2) else 2
+    acc = np.empty(3)
+    _ok, _N0, _F0, _N1, _F1, N2, F2 = mode_solve(
+        t, y, par, CS_OPEN, CS_OPEN, cs2, hdr, smp, acc)
+    sw = wall_sigma(cs2)
+    if k == K_STICK and sw != 0:
+        _an, atw = contact_acc(kw, y, par, acc)
+        _g, _vn, vtw = point_kin(kw, y, par)
+        return sw * vtw, sw * atw, True
+    if k == K_SLIP and (cs2 == CS_TOP_STICK or cs2 == CS_BASE_STICK):
+        return par[C_MU_W] * N2 - abs(F2), 0.0, True
+    return np.inf, 0.0, True
+
+
+@jit
 def event(k, t, y, par, disc, hdr, smp):
     mode = disc[D_MODE]
     s = disc[D_PIVOT]
@@ -672,6 +709,10 @@ def event(k, t, y, par, disc, hdr, smp):
         # slide-rocking on the far corner); while it rests on the wall
         # (ladder mode), the wall's normal force reaching 0
         if mode == MODE_FLIGHT:
+            if face_flight(disc):
+                return face_push(t, par, hdr, smp), 0.0, True
+            if wall_base(disc[D_CS2]):
+                return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
             g, gd = approach_gap(K_NEAR, y, par)
             return g, gd, True
         if mode != MODE_ROCK and mode != MODE_SLIDE_ROCK:
@@ -708,6 +749,13 @@ def event(k, t, y, par, disc, hdr, smp):
         if k == K_PASS_ALPHA:
             sg = 1.0 if y[0] >= 0.0 else -1.0
             return alpha_of(sg, par) - abs(y[0]), -sg * y[1], False
+        cs2 = disc[D_CS2]
+        if k == K_WALL and wall_top(cs2):
+            # flight with the top corner on the wall: the wall's force
+            # reaching 0
+            return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
+        if (k == K_STICK or k == K_SLIP) and cs2 != CS_OPEN:
+            return wall_flight_event(k, t, y, par, disc, hdr, smp)
         if k == K_LAND0 or k == K_LAND1 or k == K_WALL:
             if k == K_WALL and not wall_active(par):
                 return np.inf, 0.0, True
@@ -1556,13 +1604,17 @@ def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         post[2] = om + (ry * pt - rx * pn) / iG
         vn_post = vn + wtn * pt + wnn * pn
         separates = vn_post > 1e-9 * abs(vn)
-    # the other corner: on the ground and penetrating -> flat landing
+    # the other corner: on the ground and penetrating -> flat landing; or
+    # reaching it together with j (a flat base coming down: a two-point
+    # impact, whichever corner's event fired first, so that mirror images
+    # land alike)
     o = 1 - j
     bw = par[C_B1] + par[C_B2]
+    _g, vn_o_pre, _vt = point_kin(o, y, par)
     tmp = y.copy()
     set_cm_velocity(tmp, par, post[0], post[1], post[2])
     gap_o, vn_o, _vt_o = point_kin(o, tmp, par)
-    flat = gap_o <= FLAT_RTOL * bw and vn_o < 0.0
+    flat = gap_o <= FLAT_RTOL * bw and (vn_o < 0.0 or vn_o_pre < 0.0)
     if flat:
         _g, _vn, vt = point_kin(0, y, par)
         ok, N0, F0, N1, F1, _N2, _F2 = solve_contacts(
@@ -2078,6 +2130,13 @@ def face_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, count_wall):
     vx = vgx
     if w * vx > 0.0:
         vx = -par[P_E_W] * vx
+    g0, _vn, _vt = point_kin(0, y, par)
+    g1, _vn, _vt = point_kin(1, y, par)
+    if (disc[D_MODE] == MODE_FLIGHT and not wall_frictional(par)
+            and min(g0, g1) > FLAT_RTOL * (par[C_B1] + par[C_B2])):
+        return face_impact_in_flight(t, y, par, disc, hdr, smp, opt, met, log,
+                                     cnt, vx, vgy, before, chatter, pre,
+                                     count_wall)
     ln = max(0.0, -vgy)
     if not np.isfinite(par[C_MU_K]):
         vx = 0.0
@@ -2103,6 +2162,58 @@ def face_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, count_wall):
 
 
 @jit
+def face_impact_in_flight(t, y, par, disc, hdr, smp, opt, met, log, cnt, vx,
+                          vgy, before, chatter, pre, count_wall):
+    """The face reaches the wall in flight, the base above the ground (a
+    frictionless wall): the face stops turning (theta = theta' = 0, the
+    CM's height and vertical velocity kept), its horizontal velocity vx
+    (toward the wall reversed with e_w by the caller; below the rest
+    rule's speed, or in chatter, 0).  The kinetic energy becomes
+    (vx^2 + v_Gy^2) / 2: never more.  Pushed toward the wall (q = -w a_g
+    > 0) at vx = 0, the body flies on with the face on the wall (face
+    flight: x_G'' = 0, theta'' = 0, y_G'' = -G), until the push ends
+    (K_WALL_BASE) or the base lands flat (then ``pick_flat``, face
+    rest); else free flight."""
+    w = par[P_WALL_SIDE]
+    s = disc[D_PIVOT]
+    if chatter or abs(vx) < opt[O_EPS_OMEGA] * hmid(par):
+        vx = 0.0
+    hm = hmid(par)
+    zg = y[4] + hm * math.cos(y[0])
+    y[0] = 0.0
+    y[1] = 0.0
+    y[2] = w * par[C_GAP]
+    y[3] = vx
+    y[4] = zg - hm
+    y[5] = vgy
+    check_energy(before, kinetic_energy(y, par), met)
+    if count_wall:
+        log_event(log, cnt, t, EV_WALL_IMPACT, pre, 0.0, 0.0, s)
+    set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+    disc[D_PIVOT] = s
+    if vx == 0.0 and face_push(t, par, hdr, smp) > 0.0:
+        set_contacts(disc, CS_OPEN, CS_OPEN, CS_WALL_BASE)
+        disc[D_PIVOT] = s
+        disc[D_WALL_REST] = 1
+        log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, 0.0, s)
+    return RUNNING
+
+
+@jit
+def face_push(t, par, hdr, smp):
+    """The d'Alembert force's component toward the wall, -w a_g."""
+    ag, _av = ground(t, hdr, smp)
+    return -par[P_WALL_SIDE] * ag
+
+
+@jit
+def face_flight(disc):
+    """Flight with the face on the wall (``face_impact_in_flight``)."""
+    return (disc[D_MODE] == MODE_FLIGHT and disc[D_CS2] == CS_WALL_BASE
+            and disc[D_WALL_REST] == 1)
+
+
+@jit
 def at_face(y, par):
     """Both the wall-side base corner and the top corner at the wall: the
     face touches it."""
@@ -2111,6 +2222,80 @@ def at_face(y, par):
     bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
     gap, _vn, _vt = point_kin(2, y, par)
     return gap <= FACE_RTOL * bw
+
+
+@jit
+def pick_wall_flight(kw, t, y, par, disc, hdr, smp, stick):
+    """In flight with wall point kw (2 top corner, K_NEAR the wall-side
+    base corner) at the wall and not approaching it: the wall contact
+    closed while the wall pushes (N_w > 0 in the mode solve with both base
+    corners open), else free flight.  On a frictional wall the point
+    sticks if its tangential velocity is 0 (stick = 1: it has just
+    reached 0; stick = -1: it has just left the cone, no stick) and
+    |F_w| <= mu_w N_w, else slips (along its velocity, or from rest in
+    -sgn F_w, then the other way, not reversed)."""
+    s = disc[D_PIVOT]
+    acc = np.empty(3)
+    cand = np.empty(3, dtype=np.int64)
+    nc = 1
+    cand[0] = wall_state(kw, 0)
+    if wall_frictional(par):
+        _g, _vn, vtw = point_kin(kw, y, par)
+        if stick == 1 or (stick == 0 and abs(vtw) <= V_TOL):
+            ok, _N0, _F0, _N1, _F1, N2, F2 = mode_solve(
+                t, y, par, CS_OPEN, CS_OPEN, wall_state(kw, 1), hdr, smp,
+                acc)
+            sw = -1 if F2 > 0.0 else 1
+            if stick == 1 and ok and N2 > 0.0 and \
+                    abs(F2) <= par[C_MU_W] * N2:
+                nc = 0
+                cand[0] = wall_state(kw, 1)
+            else:
+                cand[0] = wall_state(kw, 2 * sw)
+                cand[1] = wall_state(kw, -2 * sw)
+                nc = 2
+        else:
+            cand[0] = wall_state(kw, 2 * sign_of(vtw))
+    if nc == 0:
+        set_contacts(disc, CS_OPEN, CS_OPEN, cand[0])
+        disc[D_PIVOT] = s
+        return
+    for i in range(nc):
+        ok, _N0, _F0, _N1, _F1, N2, _F2 = mode_solve(
+            t, y, par, CS_OPEN, CS_OPEN, cand[i], hdr, smp, acc)
+        sw = wall_sigma(cand[i])
+        _an, atw = contact_acc(kw, y, par, acc)
+        if ok and N2 > 0.0 and (nc == 1 or sw * atw >= 0.0):
+            set_contacts(disc, CS_OPEN, CS_OPEN, cand[i])
+            disc[D_PIVOT] = s
+            return
+    set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+    disc[D_PIVOT] = s
+
+
+@jit
+def close_wall_in_flight(kw, t, y, par, disc, hdr, smp, log, cnt):
+    """The rest rule of physics.md 7 for wall impacts in flight: wall
+    impacts closer than eps_t, or a rebound slower than eps_omega times
+    the body's size, close the wall contact.  Under a push toward the wall
+    the rebounds of e_w < 1 shrink geometrically and accumulate at a finite
+    time (a Zeno sequence; at e_w = 0, or at the accumulation point, the
+    free flight pushes the point back into the wall at once); the rule cuts
+    that tail.  A plastic impact of the wall point (its normal velocity to
+    0, Routh's with mu_w on a frictional wall) only dissipates; then
+    ``pick_wall_flight``."""
+    post = np.empty(3)
+    vgx, vgy = cm_velocity(y, par)
+    post[0] = vgx
+    post[1] = vgy
+    post[2] = y[1]
+    imp = np.zeros(4)
+    point_impulse(kw, y, par, post, 0.0, par[C_MU_W], par[C_MU_W], imp, 0)
+    set_cm_velocity(y, par, post[0], post[1], post[2])
+    pick_wall_flight(kw, t, y, par, disc, hdr, smp, 0)
+    if disc[D_CS2] != CS_OPEN:
+        log_event(log, cnt, t, EV_WALL_REST, y[1], y[1], y[0], disc[D_PIVOT])
+    return RUNNING
 
 
 @jit
@@ -2131,6 +2316,11 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
     if mode == MODE_SLIDE or at_face(y, par):
         return face_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
                            True)
+    if mode == MODE_FLIGHT and disc[D_CS2] != CS_OPEN:
+        # the other wall point reached the wall: the closed one opens (the
+        # impact below is the new point's alone)
+        set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+        disc[D_PIVOT] = s
     stw = CS_WALL_BASE if kw == K_NEAR else CS_FREE
     if mode == MODE_ROCK:
         # the pivot sticks: its velocity is 0 up to the integration drift,
@@ -2199,6 +2389,10 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
             return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
                                False)
     if mode == MODE_FLIGHT:
+        _g, vn_post, _vt = point_kin(kw, y, par)
+        if chatter or abs(vn_post) < opt[O_EPS_OMEGA] * hmid(par):
+            return close_wall_in_flight(kw, t, y, par, disc, hdr, smp, log,
+                                        cnt)
         return RUNNING
     if kw == K_NEAR:
         if separated:
@@ -2352,6 +2546,32 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return overturned(t, y[0], y[1], s, met, log, cnt)
     if k == K_IMPACT:
         return ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
+    if mode == MODE_FLIGHT and disc[D_CS2] != CS_OPEN:
+        kw = K_NEAR if wall_base(disc[D_CS2]) else 2
+        if (k == K_WALL and kw == 2) or (k == K_WALL_BASE and kw == K_NEAR):
+            # the wall's force reached 0: free flight
+            set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+            disc[D_PIVOT] = s
+            log_event(log, cnt, t, EV_WALL_RELEASE, y[1], y[1], y[0], s)
+            return RUNNING
+        if k == K_STICK:
+            _g, _vn, vtw = point_kin(kw, y, par)
+            # the slip along the wall stopped: v_tw = 0 (up to the event's
+            # location), taken as the wall's tangential impulse stopping it
+            vgx, vgy = cm_velocity(y, par)
+            wtt, wtn, wnn, jt, jn = point_inertia(kw, y[0], par)
+            pt = -vtw / wtt
+            set_cm_velocity(y, par, vgx, vgy + pt, y[1] + jt * pt / par[C_IG])
+            pick_wall_flight(kw, t, y, par, disc, hdr, smp, 1)
+            return RUNNING
+        if k == K_SLIP:
+            pick_wall_flight(kw, t, y, par, disc, hdr, smp, -1)
+            return RUNNING
+        if k == K_LAND0 or k == K_LAND1:
+            # the landing's impulse is the base corner's alone; a wall
+            # contact it closes again is a wall impact
+            set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+            disc[D_PIVOT] = s
     if k == K_LAND0 or k == K_LAND1:
         return landing(k - K_LAND0, t, y, par, disc, hdr, smp, opt, met, log,
                        cnt)

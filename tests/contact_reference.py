@@ -231,3 +231,38 @@ def lean_critical_mu_w(b, h, theta, mu):
     ta = b / h
     tt = math.tan(theta)
     return max(0.0, (tt - ta - 2.0 * mu) / (mu * (tt + ta)))
+
+
+def flight_on_wall(b, h, g, theta0, yg0, a_g, t_out, rtol=1e-12):
+    """A rectangle 2b x 2h in flight with its top right corner on a
+    frictionless rigid wall on its right (side +1), released at rest at
+    theta0 (> 0, toward the wall) with its CM at height yg0, under a
+    constant horizontal ground acceleration a_g (< 0: the d'Alembert force
+    -a_g pushes it toward the wall).  Derived here by hand (Lagrange, two
+    degrees of freedom theta and y_G): the corner's x is fixed, so
+    x_G = X_w - b cos(theta) - h sin(theta), x_G' = c1 theta' with
+    c1 = b sin(theta) - h cos(theta), c1' = c2 = b cos(theta) + h sin(theta);
+    T = ((c1^2 + i_G) theta'^2 + y_G'^2) / 2, generalized forces -a_g c1
+    and -g:
+        (c1^2 + i_G) theta'' + c1 c2 theta'^2 = -a_g c1,   y_G'' = -g,
+    wall force (toward -x) N_w = -(x_G'' + a_g) >= 0.
+
+    Returns dict(t, theta, omega, x_G - x_G(0), y_G, N_w) at the times
+    t_out (all before the face reaches the wall or a corner the ground)."""
+    iG = (b * b + h * h) / 3.0
+
+    def acc(th, om):
+        c1 = b * math.sin(th) - h * math.cos(th)
+        c2 = b * math.cos(th) + h * math.sin(th)
+        tdd = (-a_g * c1 - c1 * c2 * om * om) / (c1 * c1 + iG)
+        return tdd, -((c1 * tdd + c2 * om * om) + a_g)
+
+    def f(t, u):
+        return [u[1], acc(u[0], u[1])[0], u[3], -g]
+
+    sol = solve_ivp(f, (0.0, max(t_out)), [theta0, 0.0, yg0, 0.0], t_eval=t_out,
+                    rtol=rtol, atol=1e-14, method="DOP853")
+    th, om, yg = sol.y[0], sol.y[1], sol.y[2]
+    xg = -(b * np.cos(th) + h * np.sin(th)) + (b * math.cos(theta0) + h * math.sin(theta0))
+    nw = np.array([acc(a, w)[1] for a, w in zip(th, om)])
+    return dict(t=sol.t, theta=th, omega=om, x_G=xg, y_G=yg, N_w=nw)
