@@ -50,6 +50,8 @@ def wall_par(body, wall):
     from fastrock.kernels import layout as K
     from fastrock.model.rigid_body import RigidBody
     if isinstance(body, RigidBody):
+        level_base_height(body, "wall= needs", "the wall-side face stands vertical above its pivot in "
+                          "the rest pose on both pivots, as the outline gives it")
         par = rigid_body_par(body)
     else:
         par = np.zeros(K.N_PAR_WALL)
