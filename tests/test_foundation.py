@@ -117,24 +117,10 @@ def test_two_spring_rhs_matches_sympy_lagrangian():
     rng = np.random.default_rng(1)
     fnd = TwoSpringFoundation(k_v=2.0e4, c_v=30.0)
     for _ in range(20):
-        state = np.array([rng.normal(0, 1e-3), rng.normal(0, 0.01), rng.uniform(-0.3, 0.3),
-                          rng.normal(0, 1.0)])
-        a_g = rng.normal(0, 3.0)
         spec, blk = foundation_spec(BODY, fnd, 2.5)
-        hdr = np.zeros(L.N_EXC)
-        hdr[L.X_KIND] = L.EXC_RECTANGULAR
-        hdr[L.X_AMP] = abs(a_g)
-        hdr[L.X_SIGN] = 1.0 if a_g >= 0 else -1.0
-        hdr[L.X_DUR] = 10.0
-        disc = np.zeros(L.N_DISC, np.int64)
-        disc[K.D_RIGHT] = rng.integers(0, 2)
-        disc[K.D_LEFT] = rng.integers(0, 2)
+        state, a_g, hdr, disc = random_two_spring_input(rng, 0.3)
         kd = K.ts_accelerations(0.5, state, spec.par, disc, hdr, np.zeros(1))
-        forces = []
-        for side, slot in ((1.0, K.D_RIGHT), (-1.0, K.D_LEFT)):
-            d = -(state[0] - side * blk.b * math.sin(state[2]))
-            dd = -(state[1] - side * blk.b * math.cos(state[2]) * state[3])
-            forces.append((fnd.k_v * d + fnd.c_v * dd) if disc[slot] else 0.0)
+        forces = corner_forces(fnd, state, disc, blk.b, -blk.b)
         ref = f(state[0], state[2], state[1], state[3], blk.M, blk.I_G, blk.b, blk.h, BODY.g,
                 a_g, *forces)
         np.testing.assert_allclose(kd, ref, rtol=1e-10, atol=1e-9)
@@ -460,3 +446,31 @@ def test_fit_without_foundation_parameters_is_explained():
         fit_free_rocking([0.5, 0.4, 0.3, 0.25], 0.1, 0.25, model="two-spring")
     with pytest.raises(NotImplementedError, match="predictor"):
         fit_free_rocking([0.5, 0.4, 0.3, 0.25], 0.1, 0.25, model="bogus")
+
+
+def random_two_spring_input(rng, q_max):
+    """A random two-spring state (y, y', q, q'), a rectangular ground pulse a_g of either sign
+    (its kernel header) and random corner contacts (the discrete state)."""
+    state = np.array([rng.normal(0, 1e-3), rng.normal(0, 0.01), rng.uniform(-q_max, q_max),
+                      rng.normal(0, 1.0)])
+    a_g = rng.normal(0, 3.0)
+    hdr = np.zeros(L.N_EXC)
+    hdr[L.X_KIND] = L.EXC_RECTANGULAR
+    hdr[L.X_AMP] = abs(a_g)
+    hdr[L.X_SIGN] = 1.0 if a_g >= 0 else -1.0
+    hdr[L.X_DUR] = 10.0
+    disc = np.zeros(L.N_DISC, np.int64)
+    disc[K.D_RIGHT] = rng.integers(0, 2)
+    disc[K.D_LEFT] = rng.integers(0, 2)
+    return state, a_g, hdr, disc
+
+
+def corner_forces(fnd, state, disc, x_right, x_left):
+    """Spring-dashpot forces of the right and left corners at x_right, x_left from the held base
+    point (0 off contact), computed independently of the kernel."""
+    forces = []
+    for x, slot in ((x_right, K.D_RIGHT), (x_left, K.D_LEFT)):
+        d = -(state[0] - x * math.sin(state[2]))
+        dd = -(state[1] - x * math.cos(state[2]) * state[3])
+        forces.append((fnd.k_v * d + fnd.c_v * dd) if disc[slot] else 0.0)
+    return forces

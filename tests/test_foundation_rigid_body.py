@@ -27,6 +27,7 @@ from fastrock.kernels import layout as L
 from fastrock.model import foundation as F
 from fastrock.model.foundation import block_inertia
 from fastrock.running.foundation import foundation_spec
+from test_foundation import corner_forces, random_two_spring_input
 
 ASYM = RigidBody(mass=1.0, inertia=0.12, b1=0.15, h1=0.8, b2=0.3, h2=0.8)
 MIRROR = RigidBody(mass=1.0, inertia=0.12, b1=0.3, h1=0.8, b2=0.15, h2=0.8)
@@ -84,23 +85,9 @@ def test_accelerations_match_a_sympy_lagrangian_with_unequal_corners():
     for body in (ASYM, MIRROR, RigidBody(mass=3.0, inertia=0.5, b1=0.4, h1=1.1, b2=0.25, h2=1.1)):
         spec, blk = foundation_spec(body, fnd)       # each body carries its own mass
         for _ in range(15):
-            state = np.array([rng.normal(0, 1e-3), rng.normal(0, 0.01), rng.uniform(-0.4, 0.4),
-                              rng.normal(0, 1.0)])
-            a_g = rng.normal(0, 3.0)
-            hdr = np.zeros(L.N_EXC)
-            hdr[L.X_KIND] = L.EXC_RECTANGULAR
-            hdr[L.X_AMP] = abs(a_g)
-            hdr[L.X_SIGN] = 1.0 if a_g >= 0 else -1.0
-            hdr[L.X_DUR] = 10.0
-            disc = np.zeros(L.N_DISC, np.int64)
-            disc[K.D_RIGHT] = rng.integers(0, 2)
-            disc[K.D_LEFT] = rng.integers(0, 2)
+            state, a_g, hdr, disc = random_two_spring_input(rng, 0.4)
             got = K.ts_accelerations(0.5, state, spec.par, disc, hdr, np.zeros(1))
-            forces = []
-            for x, slot in ((body.b2, K.D_RIGHT), (-body.b1, K.D_LEFT)):
-                d = -(state[0] - x * math.sin(state[2]))
-                dd = -(state[1] - x * math.cos(state[2]) * state[3])
-                forces.append((fnd.k_v * d + fnd.c_v * dd) if disc[slot] else 0.0)
+            forces = corner_forces(fnd, state, disc, body.b2, -body.b1)
             ref = f(state[0], state[2], state[1], state[3], blk.M, blk.I_G, body.b1, body.b2, blk.h,
                     body.g, a_g, *forces)
             np.testing.assert_allclose(got, ref, rtol=1e-10, atol=1e-9)
