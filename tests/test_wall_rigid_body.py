@@ -87,11 +87,14 @@ def test_simulate_scene_and_bad_input(tmp_path):
             fr.simulate(overhang, None, wall=fr.Wall(0.05, side=1), duration=1.0)
 
 
-def test_a_rounded_top_is_refused_beside_a_wall():
-    """The rounded top profile is stored but its wall contact is not modelled: a wall refuses it
-    rather than using the flat top's corner silently."""
+def test_a_rounded_top_runs_the_wall_model_and_is_refused_by_the_contact_model():
+    """A rounded top touches the wall with its arc (the wall model, tests/test_wall_rounded_top.py);
+    the contact model's wall contact point is the square corner, so it refuses the rounded top
+    rather than using that corner silently."""
     import dataclasses
     rounded = dataclasses.replace(BODY, top="rounded", top_radius=0.2)
     fr.simulate(rounded, None, theta0=0.01, duration=0.5)                 # without a wall it runs
-    with pytest.raises(ValueError, match="top='rounded'"):
-        fr.simulate(rounded, None, wall=fr.Wall(0.05, side=1), duration=0.5)
+    run = fr.simulate(rounded, None, wall=fr.Wall(0.05, side=1), duration=0.5)
+    assert run.kernel == "wall_body"
+    with pytest.raises(ValueError, match="rounded top"):
+        fr.simulate(rounded, None, wall=fr.Wall(0.05, side=1), friction=NEVER_SLIPS, duration=0.5)

@@ -43,6 +43,13 @@ class RigidBlock:
         Rotation [rad] at which the block counts as overturned (default pi/2).
     b, h : float, optional
         Half-width and half-height [m], when known (rectangle).
+    top_radius : float, optional
+        Radius rho [m] of rounded top corners, 0 < rho <= min(2b, 2h) (a
+        tombstone, a weathered rock).  It changes the wall contact only:
+        the rounded corner touches a wall later than the square one
+        (:meth:`Wall.limit_angle`).  alpha, p and e stay as given (a
+        rectangle's from :meth:`rectangle`); for the exact inertia of the
+        rounded outline use ``RigidBody.from_polygon``.
 
     Examples
     --------
@@ -56,6 +63,8 @@ class RigidBlock:
     theta_over: float = math.pi / 2
     b: float | None = None
     h: float | None = None
+    # a field added after studies were hashed: left out of a study's hash at its default
+    top_radius: float | None = field(default=None, metadata={"hash_default": True})
     kind: str = field(default="rigid", init=False)
 
     def __post_init__(self):
@@ -73,12 +82,20 @@ class RigidBlock:
         for nm in ("b", "h"):
             if getattr(self, nm) is not None:
                 V.positive(nm, getattr(self, nm))
+        if self.top_radius is not None:
+            rho = V.positive("top_radius", self.top_radius)
+            if self.b is None or self.h is None:
+                raise ValueError("top_radius needs the block's b and h (RigidBlock.rectangle or from_inertia)")
+            if rho > 2.0 * min(self.b, self.h):
+                raise ValueError(f"top_radius = {rho:.6g} m must be at most min(2b, 2h) = "
+                                 f"{2.0 * min(self.b, self.h):.6g} m (the rounded corners fit on the block)")
 
     @classmethod
     def rectangle(cls, b=None, h=None, e=None, g=G_STANDARD, theta_over=math.pi / 2, *, width=None,
-                  height=None):
+                  height=None, top_radius=None):
         """Rectangular block of half-width ``b`` and half-height ``h`` [m], or of full
-        dimensions ``width`` = 2b and ``height`` = 2h [m] by keyword.
+        dimensions ``width`` = 2b and ``height`` = 2h [m] by keyword; ``top_radius``: rounded
+        top corners for wall contact (see the class).
 
         R = sqrt(b^2 + h^2), alpha = atan(b/h), p = sqrt(3 g / (4 R)).
 
@@ -90,7 +107,7 @@ class RigidBlock:
         g = V.positive("g", g)
         R = math.hypot(b, h)
         return cls(alpha=math.atan2(b, h), p=math.sqrt(3.0 * g / (4.0 * R)), e=e,
-                   g=g, theta_over=theta_over, b=b, h=h)
+                   g=g, theta_over=theta_over, b=b, h=h, top_radius=top_radius)
 
     @staticmethod
     def _half_size(half_name, half, full_name, full):

@@ -69,7 +69,8 @@ class RigidBody:
     top : str
         Top profile for wall contact: "flat" (default: the top corner of
         the wall-side face touches the wall) or "rounded" (with
-        ``top_radius`` [m]; stored, refused with a wall so far).
+        ``top_radius`` [m]: the top corner on the wall side is a quarter
+        circle, which touches a wall later; the wall model only).
     top_radius : float, optional
     outline : array, shape (n, 2), optional
         The body's outline relative to the centre of mass [m], for
@@ -252,9 +253,6 @@ class RigidBody:
 
         Raises ValueError without an outline, or when the outline overhangs the pivot toward the
         wall."""
-        if self.top != "flat":
-            raise ValueError(f"wall: top={self.top!r}: the wall contact of a rounded top is not in the contact "
-                             "model yet (it touches the wall with the top corner of a flat top); give top='flat'")
         if self.outline is None:
             raise ValueError("wall: a RigidBody needs its outline (RigidBody.from_polygon, from_mesh or "
                              "outline=) for the wall contact: its top corner on the wall side")
@@ -279,7 +277,7 @@ class RigidBody:
         if self.source_block is not None:
             return self.source_block
         return RigidBlock(alpha=self.alpha1, p=self.p1, e=self.e12, g=self.g, theta_over=self.theta_over,
-                          b=self.b1, h=self.h1)
+                          b=self.b1, h=self.h1, top_radius=self.top_radius if self.top == "rounded" else None)
 
     # ------------------------------------------------------- constructors
     @classmethod
@@ -298,7 +296,8 @@ class RigidBody:
             b, h = R * math.sin(block.alpha), R * math.cos(block.alpha)
         k2 = block.g * R / block.p ** 2 - R * R          # I_G / m from p^2 = g R / (k^2 + R^2)
         body = cls(mass=m, inertia=m * k2, b1=b, h1=h, b2=b, h2=h, e=block.e, g=block.g,
-                   theta_over=block.theta_over,
+                   theta_over=block.theta_over, top="flat" if block.top_radius is None else "rounded",
+                   top_radius=block.top_radius,
                    outline=np.array([(-b, -h), (b, -h), (b, h), (-b, h)]))
         object.__setattr__(body, "source_block", block)
         return body

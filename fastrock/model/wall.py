@@ -71,6 +71,10 @@ class Wall:
     its outline: the face toward the wall is taken vertical above that side's
     pivot, up to the top of the outline (:meth:`RigidBody.wall_face_top`);
     it rocks with each side's alpha, p and impact map, the wall as above.
+    A rounded top (``RigidBlock(top_radius=...)``, ``RigidBody(top="rounded",
+    top_radius=...)``: the top corner on the wall side is a quarter circle of
+    radius rho) touches the wall with its arc, later than the flat top's
+    corner would (:meth:`limit_angle`); the impact map is the same.
 
     Examples
     --------
@@ -127,42 +131,71 @@ class Wall:
                              "the body with RigidBlock.rectangle(b, h) or RigidBlock.from_inertia(...)")
         return 2.0 * float(h)
 
-    def contact(self, body):
-        """Which geometry branch sets the limit angle: "hogan" (d = 0),
-        "tall" (top rear corner touches the wall), "short" (the rear face
-        touches the wall's top edge) or "none" (d >= 2h, the face height:
-        never reached)."""
-        face = self._face_height(body)
+    @staticmethod
+    def _top_radius(body, face):
+        """Radius rho [m] of the body's rounded top corner on the wall side (0: a flat top)."""
+        rho = getattr(body, "top_radius", None)
+        if rho is None or (getattr(body, "kind", "") == "rigid_body" and body.top != "rounded"):
+            return 0.0
+        if rho > face:
+            raise ValueError(f"top_radius = {rho:.6g} m is larger than the height of the body's face toward the "
+                             f"wall ({face:.6g} m): the rounded corner must fit on that face")
+        return float(rho)
+
+    def _geometry(self, body):
+        """(branch, theta_w) of :meth:`contact` and :meth:`limit_angle`."""
         d = self.gap
         if d == 0.0:
-            return "hogan"
-        if self.height is not None and d * d + self.height ** 2 < face * face:
-            return "short"
+            return "hogan", 0.0
+        face = self._face_height(body)
         if d >= face:
-            return "none"
-        return "tall"
+            return "none", math.inf
+        rho = self._top_radius(body, face)
+        a = face - rho                      # the straight part of the face, from the pivot up
+        # the arc's centre is at (-rho, a) from the pivot (x toward the wall); turned by theta
+        # its front point is at x = -rho cos(theta) + a sin(theta) + rho, y = rho sin(theta)
+        # + a cos(theta), both increasing in theta up to pi/2
+        c = math.hypot(a, rho)
+        theta = math.atan2(rho, a) + math.asin((d - rho) / c)
+        if self.height is None or self.height >= rho * math.sin(theta) + a * math.cos(theta):
+            return "tall", theta
+        # that point passes above a short wall: the face or the arc touches the wall's top edge
+        # E = (d, h_w), with the body's point at E's distance from the pivot (monotone along face,
+        # arc and top, so unique; it lies below that front point, hence on the face or the arc)
+        r = math.hypot(d, self.height)
+        if r <= a:
+            return "short", math.atan2(d, self.height)
+        phi = math.atan2(rho, a) + math.asin((r * r - a * a - 2.0 * rho * rho) / (2.0 * rho * c))
+        x, y = -rho + rho * math.cos(phi), a + rho * math.sin(phi)
+        return "short", math.atan2(d, self.height) - math.atan2(x, y)
+
+    def contact(self, body):
+        """Which geometry branch sets the limit angle: "hogan" (d = 0),
+        "tall" (the top corner on the wall side touches the wall), "short"
+        (the face, or a rounded top's arc, touches the wall's top edge) or
+        "none" (d >= the face height: never reached)."""
+        return self._geometry(body)[0]
 
     def limit_angle(self, body):
         """Rotation theta_w [rad] toward the wall at which the block touches it.
 
-        Tilting toward the wall about the near bottom corner, the rear face
-        rotates about its bottom point.  Tall wall (h_w >= 2h cos theta_w):
-        the top rear corner touches it, sin(theta_w) = d / (2h).  Short wall
-        (h_w < 2h cos theta_w, i.e. d^2 + h_w^2 < 4h^2): the rear face touches
-        the wall's top edge, tan(theta_w) = d / h_w.  Exactly one branch is
-        admissible (they meet at d^2 + h_w^2 = 4h^2).  If d >= 2h the block
-        cannot reach the wall before lying flat: ``math.inf`` is returned and
-        the run is the two-sided one.
+        Tilting toward the wall about the near bottom corner, the face
+        toward the wall (height 2h for a block) rotates about its bottom
+        point.  Tall wall (h_w >= 2h cos theta_w): the top corner touches
+        it, sin(theta_w) = d / (2h).  Short wall (h_w < 2h cos theta_w, i.e.
+        d^2 + h_w^2 < 4h^2): the face touches the wall's top edge,
+        tan(theta_w) = d / h_w.  Exactly one branch is admissible (they meet
+        at d^2 + h_w^2 = 4h^2).  If d >= 2h the block cannot reach the wall
+        before lying flat: ``math.inf`` is returned and the run is the
+        two-sided one.
+
+        A rounded top corner of radius rho on a face of height H: the arc
+        touches a tall wall when -rho cos(theta) + (H - rho) sin(theta) +
+        rho = d; a short wall's top edge at distance r = sqrt(d^2 + h_w^2)
+        from the pivot is touched by the face (r <= H - rho, as above) or by
+        the arc's point at that distance.  rho = 0 is the flat top.
         """
-        kind = self.contact(body)
-        d = self.gap
-        if kind == "hogan":
-            return 0.0
-        if kind == "short":
-            return math.atan2(d, self.height)
-        if kind == "none":
-            return math.inf
-        return math.asin(d / self._face_height(body))
+        return self._geometry(body)[1]
 
     def fill_par(self, par, body):
         """Write the wall entries of the rigid kernel's parameter vector."""

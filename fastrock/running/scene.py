@@ -209,7 +209,8 @@ def body_from_table(d, base=None):
         return rigid_body_from_table(d, base)
     if kind == "rigid":
         if "b" in d or "h" in d:
-            return _build(RigidBlock.rectangle, only_keys(d, "body", {"b", "h", "e", "g", "theta_over"}), "body")
+            return _build(RigidBlock.rectangle, only_keys(d, "body", {"b", "h", "e", "g", "theta_over", "top_radius"}),
+                          "body")
         if "I0" in d:
             return _build(RigidBlock.from_inertia,
                           only_keys(d, "body", {"R", "alpha", "I0", "m", "e", "g", "theta_over"}), "body")
