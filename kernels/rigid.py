@@ -352,8 +352,8 @@ def peak_times_sides(theta, w, s, alpha_s, p_s, e_s, alpha_o, p_o, e_o):
     c_s = 1.0 - math.cos(alpha_s)
     c_o = 1.0 - math.cos(alpha_o)
     E = 0.5 * w * w / (p_s * p_s) + math.cos(alpha_s - s * theta) - math.cos(alpha_s)
-    rho_s = (e_s * e_s) * ((p_s * p_s) / (p_o * p_o))
-    rho_o = (e_o * e_o) * ((p_o * p_o) / (p_s * p_s))
+    rho_s = impact_energy_factor(e_s, p_s, p_o)
+    rho_o = impact_energy_factor(e_o, p_o, p_s)
     to_peak = swing_time(0.5 * (alpha_s - s * theta), 0.5 * (c_s - E), p_s)
     if s * w > 0.0:
         e2 = rho_s * E
@@ -679,6 +679,14 @@ def body_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
 
 
 @jit
+def impact_energy_factor(e, p_from, p_to):
+    """rho: an impact of restitution e from a pivot of p_from onto one of
+    p_to turns the energy E (in units of M g R of the side it rocks on)
+    into rho E, rho = e^2 p_from^2 / p_to^2 (= e^2 I_O,to / I_O,from)."""
+    return (e * e) * ((p_from * p_from) / (p_to * p_to))
+
+
+@jit
 def bounded_after_excitation_sides(theta, w, s, alpha_s, p_s, e_s, alpha_o,
                                    p_o, e_o):
     """``bounded_after_excitation`` per side (exact as well): pivot s with
@@ -700,8 +708,8 @@ def bounded_after_excitation_sides(theta, w, s, alpha_s, p_s, e_s, alpha_o,
         - math.cos(alpha_s)
     if not E < 1.0 - math.cos(alpha_s):
         return False, 0.0, 0.0
-    rho_s = (e_s * e_s) * ((p_s * p_s) / (p_o * p_o))
-    rho_o = (e_o * e_o) * ((p_o * p_o) / (p_s * p_s))
+    rho_s = impact_energy_factor(e_s, p_s, p_o)
+    rho_o = impact_energy_factor(e_o, p_o, p_s)
     if s * w > 0.0:
         side1 = s
         a1 = alpha_s

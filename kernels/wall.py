@@ -129,7 +129,7 @@ from .layout import (D_MODE, D_PIVOT, D_STATIC, D_WALL_REST, EV_FLIGHT,
                      O_T0, RUNNING, SAFE_BOUNDED, SAFE_REST)
 from .rigid import (K_FLIGHT, K_IMPACT, K_OVERTURN, UPLIFT_RTOL, body_event,
                     body_ground_impact, body_rhs, body_start_rocking_or_rest,
-                    body_static_margin, housner, rhs,
+                    body_static_margin, housner, impact_energy_factor, rhs,
                     init_state as rigid_init_state, observe, overturned,
                     peak_from_energy, track_rotation)
 from .rigid import event as rigid_event
@@ -171,14 +171,8 @@ def impact_energy_ratio(par, s):
     """rho_s: a ground impact leaving pivot s turns E_s into rho_s E_s
     (each in units of its side's M g R), rho_s = e_s^2 p_s^2 / p_-s^2."""
     if s > 0:
-        e = par[P_E]
-        ps = par[P_P]
-        po = par[P_P_NEG]
-    else:
-        e = par[P_E_NEG]
-        ps = par[P_P_NEG]
-        po = par[P_P]
-    return (e * e) * ((ps * ps) / (po * po))
+        return impact_energy_factor(par[P_E], par[P_P], par[P_P_NEG])
+    return impact_energy_factor(par[P_E_NEG], par[P_P_NEG], par[P_P])
 
 
 @jit
