@@ -109,3 +109,29 @@ def test_rigid_fixed_step_is_not_flagged():
     df = overturning_spectrum(RigidBlock(0.25, 2.0), np.linspace(1, 6, 6), np.linspace(0.5, 8, 6),
                               sign="both", dt=0.01, progress=False)
     assert not (df["outcome"] == "failed").any()
+
+
+def test_simulate_names_a_step_it_checked():
+    """friction:2027:280 (bench/fuzz.py): a fixed step of 2 pi/omega_max/96 diverges in a 23.5 g tan(alpha)
+    half-sine, and the local-error estimate's step (2.25e-3 s) diverges as well. simulate() runs the case
+    again from that estimate, halving, and names the step at which it ends definite; at that step it
+    does."""
+    import re
+    import warnings
+    from fastrock import Friction, Pulse, RigidBlock
+    body = RigidBlock.rectangle(b=6.569492515789904, h=18.01853645912481, e=0.7473255108407602)
+    pulse = Pulse(23.531351370140506, 9.708941270170655, 1, "half-sine", amplitude_unit="g_tan_alpha",
+                  frequency_unit="omega_p/p")
+    friction = Friction(1.620827675325542)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        r = simulate(body, pulse, friction=friction, dt=0.0108624)
+    assert r.status == "failed:unstable-step"
+    msg = " ".join(str(w.message) for w in rec)
+    named = re.findall(r"dt <= ([0-9.eE+-]+) s would be stable \(checked: at that step this run ends ([a-z:0-9-]+)\)",
+                       msg)
+    assert len(named) == 1
+    dt_ok, status = float(named[0][0]), named[0][1]
+    assert dt_ok < 0.0108624 / 2
+    again = simulate(body, pulse, friction=friction, dt=dt_ok)
+    assert again.status == status and not status.startswith("failed")

@@ -51,9 +51,38 @@ STATUS_DESCRIPTION = {
 }
 
 
-def warn_unstable(status, MET, dt, stacklevel=3):
-    """Warn when fixed-step runs ended as failed:unstable-step, naming a step
-    that would be stable (the smallest the kernels suggested)."""
+def _three_digits_down(x):
+    """x rounded down to three significant digits (a step printed as it was tried)."""
+    import math
+    scale = 10.0 ** (math.floor(math.log10(x)) - 2)
+    return float(f"{math.floor(x / scale) * scale:.3g}")
+
+
+def checked_stable_step(run, opt, dt, suggested, tries=8):
+    """A fixed step at which a run that diverged at ``dt`` ends definite, found by running it again:
+    from the kernel's suggestion (the step that brings the diverging step's local error within the
+    limit), then halving while the run still diverges, at most ``tries`` runs.  ``run(opt)`` returns
+    (status code, metrics).  Returns (dt, status name), or (None, the smallest dt tried) if none did."""
+    import math
+    step = suggested if math.isfinite(suggested) and 0.0 < suggested < dt else 0.5 * dt
+    for _ in range(tries):
+        step = _three_digits_down(step)
+        o = opt.copy()
+        o[L.O_DT_FIXED] = step
+        code, met = run(o)
+        if code != L.FAIL_UNSTABLE:
+            if outcome_of(code) == "failed":
+                return None, step           # another limit (a step budget): no step to name
+            return step, status_of(code)
+        nxt = met[L.M_DT_STABLE]
+        step = min(nxt if math.isfinite(nxt) and nxt > 0.0 else step, 0.5 * step)
+    return None, step
+
+
+def warn_unstable(status, MET, dt, stacklevel=3, checked=None):
+    """Warn when fixed-step runs ended as failed:unstable-step.  ``checked``: the result of
+    :func:`checked_stable_step` for a single run (``simulate``), named as checked; otherwise
+    the smallest step the kernels suggested, named as an estimate."""
     import warnings
 
     import numpy as np
@@ -61,9 +90,18 @@ def warn_unstable(status, MET, dt, stacklevel=3):
     bad = status == L.FAIL_UNSTABLE
     if not bad.any():
         return
-    dts = np.atleast_2d(MET)[bad, L.M_DT_STABLE]
-    dts = dts[np.isfinite(dts) & (dts > 0)]
-    hint = f"; dt <= {dts.min():.3g} s would be stable" if dts.size else ""
+    if checked is not None:
+        step, how = checked
+        if step is not None:
+            hint = f"; dt <= {step:.3g} s would be stable (checked: at that step this run ends {how})"
+        else:
+            hint = (f"; no fixed step down to {how:.3g} s ended this run (checked): the motion is stiffer than "
+                    "a fixed step follows, use the adaptive solver")
+    else:
+        dts = np.atleast_2d(MET)[bad, L.M_DT_STABLE]
+        dts = dts[np.isfinite(dts) & (dts > 0)]
+        hint = (f"; dt <= {dts.min():.3g} s would be stable by the local-error estimate (simulate() of a "
+                "row checks it)") if dts.size else ""
     warnings.warn(f"{int(bad.sum())} of {status.size} run(s) ended as failed:unstable-step: the fixed step "
                   f"dt = {dt:g} s made a local error above 1 % of the motion, where the solution diverges"
                   f"{hint} (or use the adaptive solver)", RuntimeWarning, stacklevel=stacklevel)

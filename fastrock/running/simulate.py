@@ -11,7 +11,7 @@ import pandas as pd
 from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.running import registry
-from fastrock.running.outcomes import MODE_NAMES, outcome_of, status_of, warn_unstable
+from fastrock.running.outcomes import MODE_NAMES, checked_stable_step, outcome_of, status_of, warn_unstable
 from fastrock.model.ground import as_ground
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
 from fastrock.running.sweep import call_kernel
@@ -149,20 +149,24 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
                                         history_capacity, solver, early_exit, ground)
     if ground is not None:
         ground.check_lift_off(body, X.channel_peak(hdr, smp), spec.name, vertical)
-    while True:
-        y = y0.copy()
-        met = np.zeros(L.N_MET)
-        hist_t = np.empty(cap)
-        hist_y = np.empty((cap, spec.n_state))
-        hist_d = np.empty((cap, 3), np.int64)
-        log = np.empty((max(1000, cap // 4), L.N_LOG))
-        cnt = np.zeros(N_COUNTERS, np.int64)
-        code = int(call_kernel(spec.simulate, y, spec.par, hdr, smp, opt, te, met, hist_t, hist_y, hist_d, log,
-                               cnt, opt=opt))
-        if code == L.FAIL_OUTPUT_FULL and cap < 50_000_000:
-            cap *= 4
-            continue
-        break
+
+    def run(opt, cap):
+        while True:
+            y = y0.copy()
+            met = np.zeros(L.N_MET)
+            hist_t = np.empty(cap)
+            hist_y = np.empty((cap, spec.n_state))
+            hist_d = np.empty((cap, 3), np.int64)
+            log = np.empty((max(1000, cap // 4), L.N_LOG))
+            cnt = np.zeros(N_COUNTERS, np.int64)
+            code = int(call_kernel(spec.simulate, y, spec.par, hdr, smp, opt, te, met, hist_t, hist_y, hist_d,
+                                   log, cnt, opt=opt))
+            if code == L.FAIL_OUTPUT_FULL and cap < 50_000_000:
+                cap *= 4
+                continue
+            return code, met, hist_t, hist_y, hist_d, log, cnt
+
+    code, met, hist_t, hist_y, hist_d, log, cnt = run(opt, cap)
     nh = int(cnt[C_NHIST])
     hist = (hist_t[:nh].copy(), hist_y[:nh].copy(), hist_d[:nh].copy())
     history = partial(_history, hist, hdr, smp, spec, body)       # built when first read
@@ -180,7 +184,10 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     if spec.model.flight or spec.name == "contact":
         metrics.update({k: v[0].item() for k, v in flight_metrics(met[None, :]).items()})
     if solver.dt:
-        warn_unstable(code, met, solver.dt)
+        checked = None
+        if code == L.FAIL_UNSTABLE:
+            checked = checked_stable_step(lambda o: run(o, cap)[0:2], opt, solver.dt, met[L.M_DT_STABLE])
+        warn_unstable(code, met, solver.dt, checked=checked)
     if DEBUG:
         metrics["energy_gains"] = int(met[L.M_ENERGY_GAINS])
     if metrics.get("energy_gains", 0) > 0:
