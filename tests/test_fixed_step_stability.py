@@ -135,3 +135,21 @@ def test_simulate_names_a_step_it_checked():
     assert dt_ok < 0.0108624 / 2
     again = simulate(body, pulse, friction=friction, dt=dt_ok)
     assert again.status == status and not status.startswith("failed")
+
+
+def test_foundation_runs_name_a_checked_step_too():
+    """simulate(..., foundation=...) warns like the other families (it had no warning)."""
+    import re
+    import warnings
+    from fastrock import Pulse, RigidBlock, TwoSpringFoundation
+    block = RigidBlock.rectangle(0.2, 1.0)
+    foundation = TwoSpringFoundation.from_vibration(block, 60.0)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        r = simulate(block, Pulse(1.5, 2.0), foundation=foundation, dt=0.02)
+    assert r.status == "failed:unstable-step"
+    named = re.findall(r"dt <= ([0-9.eE+-]+) s would be stable \(checked: at that step this run ends ([a-z:0-9-]+)\)",
+                       " ".join(str(w.message) for w in rec))
+    assert len(named) == 1
+    again = simulate(block, Pulse(1.5, 2.0), foundation=foundation, dt=float(named[0][0]))
+    assert again.status == named[0][1] and not again.status.startswith("failed")

@@ -9,7 +9,7 @@ from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.model.bodies import RigidBlock
 from fastrock.model.rigid_body import RigidBody
-from fastrock.running.outcomes import outcome_of, status_of
+from fastrock.running.outcomes import checked_stable_step, outcome_of, status_of, warn_unstable
 from fastrock.running.result import SimulationResult, ground_at, events_frame, metrics_dict, run_inputs
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
 from fastrock.running.sweep import call_kernel
@@ -129,6 +129,14 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
                                         history_capacity, solver, False, ground)
     y0 = foundation.initial_state(blk, theta0, dtheta0, ground)
     code, t, Y, D, lg, met, cnt = integrate_foundation(spec, y0, hdr, smp, opt, te, cap)
+    if solver.dt:
+        checked = None
+        if code == L.FAIL_UNSTABLE:
+            def rerun(o):
+                r = integrate_foundation(spec, y0, hdr, smp, o, te, cap)
+                return r[0], r[5]
+            checked = checked_stable_step(rerun, opt, solver.dt, met[L.M_DT_STABLE])
+        warn_unstable(code, met, solver.dt, checked=checked)
     ag, av = ground_at(t, hdr, smp)
     it = spec.state_names.index("theta")
     th = Y[:, it]
