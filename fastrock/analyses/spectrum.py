@@ -231,12 +231,19 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
                    "the largest pulse amplitude a_p = amplitude_ratio g tan(alpha)")
     t_longest = V.run_time("frequency_ratios", (np.pi if pulse == "half-sine" else 2 * np.pi) /
                            (freqs.min() * body.p), "the longest pulse")
-    S, F, A = np.meshgrid(np.array(signs, float), freqs, amps, indexing="ij")
-    S, F, A = S.ravel(), F.ravel(), A.ravel()
     kind = X.PULSE_KINDS[pulse]
-    omega = F * body.p
-    amp = A * body.g * np.tan(body.alpha)
-    dur = (np.pi if pulse == "half-sine" else 2 * np.pi) / omega
+    sign_values = np.array(signs, float)
+    half_turns = np.pi if pulse == "half-sine" else 2 * np.pi
+
+    # A row's grid values from its id, row = (sign * n_freq + freq) * n_amp + amp: a 1000 x 1000
+    # grid never holds its six full-grid input arrays (48 MB) beside the table's columns.
+    def grid(rows):
+        i = np.arange(rows.start, rows.stop) if isinstance(rows, slice) else rows
+        A = amps[i % amps.size]
+        F = freqs[i // amps.size % freqs.size]
+        S = sign_values[i // (amps.size * freqs.size)]
+        omega = F * body.p
+        return S, F, A, omega, A * body.g * np.tan(body.alpha), half_turns / omega
     hdr0 = np.zeros(L.N_EXC)            # what every run shares: the vertical and slope blocks
     smp = np.zeros(1)
     t_vertical = 0.0
@@ -246,7 +253,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         t_vertical = X.end_time(body, None, vertical)
     if ground is not None:
         ground.fill_header(hdr0, body.g)
-        ground.check_lift_off(body, float(amp.max()), spec.name, vertical)
+        # the product rounds monotonically: the largest ratio gives the largest amplitude
+        ground.check_lift_off(body, float(amps.max() * body.g * np.tan(body.alpha)), spec.name, vertical)
     solver.check_fixed_steps(V.run_time("t_after", max(t_longest, t_vertical) + t_after,
                                         "the longest run (pulse plus t_after)"), "the longest run")
     opt = solver.options(0.0, early_exit)
@@ -264,23 +272,25 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         return inputs_at(slice(start, stop), stop - start)
 
     def inputs_at(sl, m):
+        S, _, _, omega, amp, dur = grid(sl)
         HDR = np.tile(hdr0, (m, 1))
         HDR[:, L.X_KIND] = kind
-        HDR[:, L.X_AMP] = amp[sl]
-        HDR[:, L.X_OMEGA] = omega[sl]
-        HDR[:, L.X_SIGN] = S[sl]
-        HDR[:, L.X_DUR] = dur[sl]
+        HDR[:, L.X_AMP] = amp
+        HDR[:, L.X_OMEGA] = omega
+        HDR[:, L.X_SIGN] = S
+        HDR[:, L.X_DUR] = dur
         OPT = np.tile(opt, (m, 1))
-        OPT[:, L.O_T_END] = np.maximum(dur[sl], t_vertical) + t_after
+        OPT[:, L.O_T_END] = np.maximum(dur, t_vertical) + t_after
         return np.tile(y0, (m, 1)), np.tile(spec.par, (m, 1)), HDR, OPT
 
     columns = {}
     unstable = []
 
     def table(sl, st, met, yf):
+        S, F, A, omega, amp, _ = grid(sl)
         part = pd.DataFrame({
-            "amplitude_ratio": A[sl], "frequency_ratio": F[sl], "sign": S[sl].astype(int),
-            "amplitude": amp[sl], "amplitude_g": amp[sl] / body.g, "frequency_hz": omega[sl] / (2 * np.pi),
+            "amplitude_ratio": A, "frequency_ratio": F, "sign": S.astype(int),
+            "amplitude": amp, "amplitude_g": amp / body.g, "frequency_hz": omega / (2 * np.pi),
         })
         # a model with a slip state and no friction= (an asymmetric body beside a wall): never slips
         part = _add_results(part, st, met, body, wall,
@@ -331,10 +341,9 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         df = compact_table(table(slice(0, 0), empty.astype(np.int64), np.empty((0, L.N_MET)),
                                  np.empty((0, spec.n_state))))
     else:
-        codes = {k: columns[k][:done] for k in CATEGORIES}
-        df = compact_table(pd.DataFrame({k: v[:done] for k, v in columns.items() if k not in CATEGORIES},
-                                        copy=False), codes)
-        df = df[list(columns)]        # the columns in table order
+        # the filled columns become the table's without a copy (a million-row table is 100 MB)
+        df = pd.DataFrame({k: (pd.Categorical.from_codes(v[:done], categories=CATEGORIES[k]) if k in CATEGORIES
+                               else v[:done]) for k, v in columns.items()}, copy=False)
     columns.clear()
     if unstable:
         # the unstable rows' suggested steps, placed as warn_unstable reads them
