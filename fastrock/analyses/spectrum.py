@@ -75,6 +75,13 @@ def _codes(name, values):
     return cat.codes.astype(np.int8)
 
 
+def _label_codes(name, status, label_of):
+    """Category codes (int8) of each run's label (``label_of``: outcome_of or status_of), the
+    label found once per distinct status code: no Python string per row of a big grid."""
+    distinct, inverse = np.unique(np.asarray(status, np.int64), return_inverse=True)
+    return _codes(name, [label_of(c) for c in distinct])[inverse.ravel()]
+
+
 def compact_table(df, codes=None):
     """The spectrum table with its compact columns (CATEGORIES, COMPACT_INTEGERS); ``codes``:
     category codes already computed, by column name."""
@@ -315,7 +322,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
                 dtype = (np.int8 if k in CATEGORIES else COMPACT_INTEGERS.get(k, part[k].to_numpy().dtype))
                 columns[k] = np.empty(n, dtype=dtype if np.dtype(dtype).kind in "biuf" else object)
         for k in part.columns:
-            columns[k][start:start + st.size] = (_codes(k, part[k].to_numpy(object)) if k in CATEGORIES
+            columns[k][start:start + st.size] = (part[k].cat.codes.to_numpy() if k in CATEGORIES
                                                  else part[k].to_numpy())
         if solver.dt and (st == L.FAIL_UNSTABLE).any():
             bad = np.flatnonzero(st == L.FAIL_UNSTABLE)
@@ -380,14 +387,18 @@ def _to_ratios(body, amps, freqs, amplitude_unit, frequency_unit):
 
 
 def _add_results(df, status, MET, body, wall=None, friction=None):
-    df["outcome"] = [outcome_of(c) for c in status]
+    outcome = _label_codes("outcome", status, outcome_of)
+    df["outcome"] = pd.Categorical.from_codes(outcome, categories=CATEGORIES["outcome"])
     if friction is not None:
         from fastrock.running.result import friction_metrics
         for k, v in friction_metrics(MET, getattr(body, "kind", "") == "flexible").items():
             df[k] = v
-        slid = (df["outcome"] == "safe") & (df["residual_slide"].abs() > friction.slide_tolerance)
-        df.loc[slid, "outcome"] = "slide"
-    df["status"] = [status_of(c) for c in status]
+        labels = CATEGORIES["outcome"]
+        outcome[(outcome == labels.index("safe")) &
+                (np.abs(df["residual_slide"].to_numpy()) > friction.slide_tolerance)] = labels.index("slide")
+        df["outcome"] = pd.Categorical.from_codes(outcome, categories=labels)
+    df["status"] = pd.Categorical.from_codes(_label_codes("status", status, status_of),
+                                             categories=CATEGORIES["status"])
     df["max_rotation_ratio"] = MET[:, L.M_MAX_ABS_THETA] / body.alpha
     df["max_rotation"] = MET[:, L.M_MAX_ABS_THETA]
     df["impacts"] = np.nan_to_num(MET[:, L.M_IMPACTS]).astype(int)
