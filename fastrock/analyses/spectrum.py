@@ -128,7 +128,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
                          solver=None,
                          rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
                          early_exit=True, chunk_size=None, progress=True, boundary_check=False,
-                         amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p", kind=None, out=None):
+                         amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p", kind=None, out=None,
+                         columns=None):
     """Overturning spectrum of a body under pulses, in parallel.
 
     Parameters
@@ -185,6 +186,13 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         not fit in memory.  Calling again with the same arguments and
         ``out`` resumes: only the rows no file holds yet are run.  Returns
         the folder; :func:`load_spectrum` reads it back as one table.
+    columns : list of str, optional
+        The result columns to keep, by name (``SPECTRUM_COLUMNS``); the grid
+        columns amplitude_ratio, frequency_ratio and sign are always kept,
+        and the table keeps its column order.  None (default): every column.
+        For big grids: a million-row table takes 114 MB with every column of
+        the rigid block, 26 MB with ``columns=["outcome", "max_rotation_ratio"]``;
+        the values are the same.
     boundary_check : bool
         Run the grid a second time with the tolerance (or the fixed step)
         halved and add the column ``boundary``: True where the outcome
@@ -290,8 +298,9 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         OPT[:, L.O_T_END] = np.maximum(dur, t_vertical) + t_after
         return np.tile(y0, (m, 1)), np.tile(spec.par, (m, 1)), HDR, OPT
 
-    columns = {}
+    columns_asked, columns = columns, {}
     unstable = []
+    keep = None         # the columns asked for, in table order (None: all)
 
     def table(sl, st, met, yf):
         S, F, A, omega, amp, _ = grid(sl)
@@ -313,7 +322,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         part["theta_dot_end"] = yf[:, spec.theta_index + 1]
         overturned = (st == L.OVERTURN_MODE1) | (st == L.OVERTURN_MODE2)
         part["side"] = np.where(overturned, np.sign(yf[:, spec.theta_index]), 0.0).astype(int)
-        return part
+        return part if keep is None else part[keep]
 
     def consume(start, st, met, yf):
         part = table(slice(start, start + st.size), st, met, yf)
@@ -334,12 +343,17 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     if isinstance(body, RigidBody) and not body.is_symmetric:   # in any of its models
         attrs.update(alpha1=body.alpha1, alpha2=body.alpha2, p1=body.p1, p2=body.p2, e12=body.e12,
                      e21=body.e21, ratio_side=body.smaller_side)
+    if columns_asked is not None:
+        keep = _kept_columns(columns_asked, table(slice(0, 0), np.empty(0, np.int64), np.empty((0, L.N_MET)),
+                                                  np.empty((0, spec.n_state))).columns, boundary_check)
     if out is not None:
         if boundary_check:
             raise ValueError("out: boundary_check does not stream to files; run it without out")
         call = dict(body=body, amplitude_ratios=amps, frequency_ratios=freqs, signs=signs, pulse=pulse,
                     wall=wall, friction=friction, foundation=foundation, ground=ground, mass=mass,
                     vertical=vertical, solver=solver, t_after=t_after, early_exit=early_exit)
+        if keep is not None:
+            call["columns"] = keep
         return _stream(out, call, attrs, n, spec, inputs_at, table, smp, chunk_size, progress)
     done = run_chunks(spec.sweep, n, inputs, smp, consume, chunk_size, progress, label="runs",
                       model=spec.name)
@@ -370,12 +384,33 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
                                    amplitude_unit=amplitude_unit, frequency_unit=frequency_unit, wall=wall,
                                    friction=friction, foundation=foundation, ground=ground, mass=mass,
                                    vertical=vertical, solver=half, t_after=t_after, early_exit=early_exit,
-                                   chunk_size=chunk_size, progress=progress)
+                                   chunk_size=chunk_size, progress=progress, columns=["outcome"])
         m = min(len(df), len(df2))
         df = df.iloc[:m].copy()
         df["boundary"] = df["outcome"].to_numpy() != df2["outcome"].to_numpy()[:m]
         df.attrs["interrupted"] = df.attrs["interrupted"] or df2.attrs["interrupted"]
     return df
+
+
+#: Columns every table keeps (``columns=``): the grid point of each row.
+GRID_COLUMNS = ("amplitude_ratio", "frequency_ratio", "sign")
+
+
+def _kept_columns(asked, available, boundary_check):
+    """The table's columns (in table order) for ``columns=asked``, refusing a name it has not."""
+    if isinstance(asked, str):
+        asked = [asked]
+    try:
+        asked = list(asked)
+    except TypeError:
+        raise ValueError(f"columns must be a list of column names, got {asked!r}") from None
+    available = list(available)
+    unknown = [c for c in asked if c not in available]
+    if unknown:
+        raise ValueError(f"columns: {unknown} are not columns of this spectrum; its columns are {available}")
+    if boundary_check and "outcome" not in asked:
+        raise ValueError("columns: boundary_check compares the outcomes; keep 'outcome'")
+    return [c for c in available if c in GRID_COLUMNS or c in asked]
 
 
 def _to_ratios(body, amps, freqs, amplitude_unit, frequency_unit):
