@@ -75,6 +75,13 @@ def _codes(name, values):
     return cat.codes.astype(np.int8)
 
 
+def _label_codes(name, status, label_of):
+    """Category codes (int8) of each run's label (``label_of``: outcome_of or status_of), the
+    label found once per distinct status code: no Python string per row of a big grid."""
+    distinct, inverse = np.unique(np.asarray(status, np.int64), return_inverse=True)
+    return _codes(name, [label_of(c) for c in distinct])[inverse.ravel()]
+
+
 def compact_table(df, codes=None):
     """The spectrum table with its compact columns (CATEGORIES, COMPACT_INTEGERS); ``codes``:
     category codes already computed, by column name."""
@@ -121,7 +128,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
                          solver=None,
                          rtol=None, atol=None, dt=None, t_after=DEFAULT_T_AFTER,
                          early_exit=True, chunk_size=None, progress=True, boundary_check=False,
-                         amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p", kind=None, out=None):
+                         amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p", kind=None, out=None,
+                         columns=None):
     """Overturning spectrum of a body under pulses, in parallel.
 
     Parameters
@@ -178,6 +186,13 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         not fit in memory.  Calling again with the same arguments and
         ``out`` resumes: only the rows no file holds yet are run.  Returns
         the folder; :func:`load_spectrum` reads it back as one table.
+    columns : list of str, optional
+        The result columns to keep, by name (``SPECTRUM_COLUMNS``); the grid
+        columns amplitude_ratio, frequency_ratio and sign are always kept,
+        and the table keeps its column order.  None (default): every column.
+        For big grids: a million-row table takes 114 MB with every column of
+        the rigid block, 26 MB with ``columns=["outcome", "max_rotation_ratio"]``;
+        the values are the same.
     boundary_check : bool
         Run the grid a second time with the tolerance (or the fixed step)
         halved and add the column ``boundary``: True where the outcome
@@ -231,12 +246,19 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
                    "the largest pulse amplitude a_p = amplitude_ratio g tan(alpha)")
     t_longest = V.run_time("frequency_ratios", (np.pi if pulse == "half-sine" else 2 * np.pi) /
                            (freqs.min() * body.p), "the longest pulse")
-    S, F, A = np.meshgrid(np.array(signs, float), freqs, amps, indexing="ij")
-    S, F, A = S.ravel(), F.ravel(), A.ravel()
     kind = X.PULSE_KINDS[pulse]
-    omega = F * body.p
-    amp = A * body.g * np.tan(body.alpha)
-    dur = (np.pi if pulse == "half-sine" else 2 * np.pi) / omega
+    sign_values = np.array(signs, float)
+    half_turns = np.pi if pulse == "half-sine" else 2 * np.pi
+
+    # A row's grid values from its id, row = (sign * n_freq + freq) * n_amp + amp: a 1000 x 1000
+    # grid never holds its six full-grid input arrays (48 MB) beside the table's columns.
+    def grid(rows):
+        i = np.arange(rows.start, rows.stop) if isinstance(rows, slice) else rows
+        A = amps[i % amps.size]
+        F = freqs[i // amps.size % freqs.size]
+        S = sign_values[i // (amps.size * freqs.size)]
+        omega = F * body.p
+        return S, F, A, omega, A * body.g * np.tan(body.alpha), half_turns / omega
     hdr0 = np.zeros(L.N_EXC)            # what every run shares: the vertical and slope blocks
     smp = np.zeros(1)
     t_vertical = 0.0
@@ -246,7 +268,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         t_vertical = X.end_time(body, None, vertical)
     if ground is not None:
         ground.fill_header(hdr0, body.g)
-        ground.check_lift_off(body, float(amp.max()), spec.name, vertical)
+        # the product rounds monotonically: the largest ratio gives the largest amplitude
+        ground.check_lift_off(body, float(amps.max() * body.g * np.tan(body.alpha)), spec.name, vertical)
     solver.check_fixed_steps(V.run_time("t_after", max(t_longest, t_vertical) + t_after,
                                         "the longest run (pulse plus t_after)"), "the longest run")
     opt = solver.options(0.0, early_exit)
@@ -264,23 +287,26 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         return inputs_at(slice(start, stop), stop - start)
 
     def inputs_at(sl, m):
+        S, _, _, omega, amp, dur = grid(sl)
         HDR = np.tile(hdr0, (m, 1))
         HDR[:, L.X_KIND] = kind
-        HDR[:, L.X_AMP] = amp[sl]
-        HDR[:, L.X_OMEGA] = omega[sl]
-        HDR[:, L.X_SIGN] = S[sl]
-        HDR[:, L.X_DUR] = dur[sl]
+        HDR[:, L.X_AMP] = amp
+        HDR[:, L.X_OMEGA] = omega
+        HDR[:, L.X_SIGN] = S
+        HDR[:, L.X_DUR] = dur
         OPT = np.tile(opt, (m, 1))
-        OPT[:, L.O_T_END] = np.maximum(dur[sl], t_vertical) + t_after
+        OPT[:, L.O_T_END] = np.maximum(dur, t_vertical) + t_after
         return np.tile(y0, (m, 1)), np.tile(spec.par, (m, 1)), HDR, OPT
 
-    columns = {}
+    columns_asked, columns = columns, {}
     unstable = []
+    keep = None         # the columns asked for, in table order (None: all)
 
     def table(sl, st, met, yf):
+        S, F, A, omega, amp, _ = grid(sl)
         part = pd.DataFrame({
-            "amplitude_ratio": A[sl], "frequency_ratio": F[sl], "sign": S[sl].astype(int),
-            "amplitude": amp[sl], "amplitude_g": amp[sl] / body.g, "frequency_hz": omega[sl] / (2 * np.pi),
+            "amplitude_ratio": A, "frequency_ratio": F, "sign": S.astype(int),
+            "amplitude": amp, "amplitude_g": amp / body.g, "frequency_hz": omega / (2 * np.pi),
         })
         # a model with a slip state and no friction= (an asymmetric body beside a wall): never slips
         part = _add_results(part, st, met, body, wall,
@@ -296,7 +322,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         part["theta_dot_end"] = yf[:, spec.theta_index + 1]
         overturned = (st == L.OVERTURN_MODE1) | (st == L.OVERTURN_MODE2)
         part["side"] = np.where(overturned, np.sign(yf[:, spec.theta_index]), 0.0).astype(int)
-        return part
+        return part if keep is None else part[keep]
 
     def consume(start, st, met, yf):
         part = table(slice(start, start + st.size), st, met, yf)
@@ -305,7 +331,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
                 dtype = (np.int8 if k in CATEGORIES else COMPACT_INTEGERS.get(k, part[k].to_numpy().dtype))
                 columns[k] = np.empty(n, dtype=dtype if np.dtype(dtype).kind in "biuf" else object)
         for k in part.columns:
-            columns[k][start:start + st.size] = (_codes(k, part[k].to_numpy(object)) if k in CATEGORIES
+            columns[k][start:start + st.size] = (part[k].cat.codes.to_numpy() if k in CATEGORIES
                                                  else part[k].to_numpy())
         if solver.dt and (st == L.FAIL_UNSTABLE).any():
             bad = np.flatnonzero(st == L.FAIL_UNSTABLE)
@@ -317,12 +343,17 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     if isinstance(body, RigidBody) and not body.is_symmetric:   # in any of its models
         attrs.update(alpha1=body.alpha1, alpha2=body.alpha2, p1=body.p1, p2=body.p2, e12=body.e12,
                      e21=body.e21, ratio_side=body.smaller_side)
+    if columns_asked is not None:
+        keep = _kept_columns(columns_asked, table(slice(0, 0), np.empty(0, np.int64), np.empty((0, L.N_MET)),
+                                                  np.empty((0, spec.n_state))).columns, boundary_check)
     if out is not None:
         if boundary_check:
             raise ValueError("out: boundary_check does not stream to files; run it without out")
         call = dict(body=body, amplitude_ratios=amps, frequency_ratios=freqs, signs=signs, pulse=pulse,
                     wall=wall, friction=friction, foundation=foundation, ground=ground, mass=mass,
                     vertical=vertical, solver=solver, t_after=t_after, early_exit=early_exit)
+        if keep is not None:
+            call["columns"] = keep
         return _stream(out, call, attrs, n, spec, inputs_at, table, smp, chunk_size, progress)
     done = run_chunks(spec.sweep, n, inputs, smp, consume, chunk_size, progress, label="runs",
                       model=spec.name)
@@ -331,10 +362,9 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         df = compact_table(table(slice(0, 0), empty.astype(np.int64), np.empty((0, L.N_MET)),
                                  np.empty((0, spec.n_state))))
     else:
-        codes = {k: columns[k][:done] for k in CATEGORIES}
-        df = compact_table(pd.DataFrame({k: v[:done] for k, v in columns.items() if k not in CATEGORIES},
-                                        copy=False), codes)
-        df = df[list(columns)]        # the columns in table order
+        # the filled columns become the table's without a copy (a million-row table is 100 MB)
+        df = pd.DataFrame({k: (pd.Categorical.from_codes(v[:done], categories=CATEGORIES[k]) if k in CATEGORIES
+                               else v[:done]) for k, v in columns.items()}, copy=False)
     columns.clear()
     if unstable:
         # the unstable rows' suggested steps, placed as warn_unstable reads them
@@ -354,12 +384,33 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
                                    amplitude_unit=amplitude_unit, frequency_unit=frequency_unit, wall=wall,
                                    friction=friction, foundation=foundation, ground=ground, mass=mass,
                                    vertical=vertical, solver=half, t_after=t_after, early_exit=early_exit,
-                                   chunk_size=chunk_size, progress=progress)
+                                   chunk_size=chunk_size, progress=progress, columns=["outcome"])
         m = min(len(df), len(df2))
         df = df.iloc[:m].copy()
         df["boundary"] = df["outcome"].to_numpy() != df2["outcome"].to_numpy()[:m]
         df.attrs["interrupted"] = df.attrs["interrupted"] or df2.attrs["interrupted"]
     return df
+
+
+#: Columns every table keeps (``columns=``): the grid point of each row.
+GRID_COLUMNS = ("amplitude_ratio", "frequency_ratio", "sign")
+
+
+def _kept_columns(asked, available, boundary_check):
+    """The table's columns (in table order) for ``columns=asked``, refusing a name it has not."""
+    if isinstance(asked, str):
+        asked = [asked]
+    try:
+        asked = list(asked)
+    except TypeError:
+        raise ValueError(f"columns must be a list of column names, got {asked!r}") from None
+    available = list(available)
+    unknown = [c for c in asked if c not in available]
+    if unknown:
+        raise ValueError(f"columns: {unknown} are not columns of this spectrum; its columns are {available}")
+    if boundary_check and "outcome" not in asked:
+        raise ValueError("columns: boundary_check compares the outcomes; keep 'outcome'")
+    return [c for c in available if c in GRID_COLUMNS or c in asked]
 
 
 def _to_ratios(body, amps, freqs, amplitude_unit, frequency_unit):
@@ -371,14 +422,18 @@ def _to_ratios(body, amps, freqs, amplitude_unit, frequency_unit):
 
 
 def _add_results(df, status, MET, body, wall=None, friction=None):
-    df["outcome"] = [outcome_of(c) for c in status]
+    outcome = _label_codes("outcome", status, outcome_of)
+    df["outcome"] = pd.Categorical.from_codes(outcome, categories=CATEGORIES["outcome"])
     if friction is not None:
         from fastrock.running.result import friction_metrics
         for k, v in friction_metrics(MET, getattr(body, "kind", "") == "flexible").items():
             df[k] = v
-        slid = (df["outcome"] == "safe") & (df["residual_slide"].abs() > friction.slide_tolerance)
-        df.loc[slid, "outcome"] = "slide"
-    df["status"] = [status_of(c) for c in status]
+        labels = CATEGORIES["outcome"]
+        outcome[(outcome == labels.index("safe")) &
+                (np.abs(df["residual_slide"].to_numpy()) > friction.slide_tolerance)] = labels.index("slide")
+        df["outcome"] = pd.Categorical.from_codes(outcome, categories=labels)
+    df["status"] = pd.Categorical.from_codes(_label_codes("status", status, status_of),
+                                             categories=CATEGORIES["status"])
     df["max_rotation_ratio"] = MET[:, L.M_MAX_ABS_THETA] / body.alpha
     df["max_rotation"] = MET[:, L.M_MAX_ABS_THETA]
     df["impacts"] = np.nan_to_num(MET[:, L.M_IMPACTS]).astype(int)
