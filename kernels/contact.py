@@ -161,8 +161,8 @@ from .config import jit, jit_parallel
 from .excitation import excitation_end, ground
 from .friction import kinetic as fr_kinetic
 from .friction import routh_general
-from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
-                     sweep_rows)
+from .hybrid import (check_energy, elastic_below_resolution, init_metrics,
+                     integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, D_WALL_REST,
                      EV_CONTACT, EV_FLIGHT, EV_IMPACT, EV_REST, EV_SLIP,
                      EV_STICK, EV_UPLIFT, EV_WALL_IMPACT, EV_WALL_RELEASE,
@@ -1506,6 +1506,10 @@ def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
         # the block comes down flat with its face on the wall: rocking on
         # the wall-side corner is blocked, a face impact
         met[M_IMPACTS] += 1
+        if par[C_GAP] == 0.0 and hogan_impact(t, y, par, disc, opt, met, log,
+                                              cnt):
+            return pick_after_hogan(t, y, par, disc, hdr, smp, opt, met, log,
+                                    cnt)
         log_event(log, cnt, t, EV_IMPACT, y[1], 0.0, 0.0, -s)
         return face_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
                            False)
@@ -1557,6 +1561,66 @@ def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
                      st if j == 1 else CS_OPEN, CS_OPEN)
         disc[D_PIVOT] = -s
         return RUNNING
+    return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
+@jit
+def hogan_impact(t, y, par, disc, opt, met, log, cnt):
+    """Gap 0 (Hogan 1992, kernels/wall.py's combined impact): rocking on
+    the far corner back to theta = 0, the wall-side base corner meets the
+    ground and the wall together; the pivot is kept, theta'+ = -e_w
+    theta'-, and its slip velocity too.  Returns False (y untouched) where
+    that map does not apply: the pivot slipping toward the wall (the face
+    arrives moving into it), or the slip's share of the kinetic energy
+    making the map gain energy (theta' and the slip of opposite senses);
+    the caller then takes the face impact (plastic, dissipative)."""
+    s = disc[D_PIVOT]
+    j = 1 if s > 0 else 0
+    _g, _vn, vs = point_kin(j, y, par)
+    if abs(vs) <= V_TOL or not np.isfinite(par[C_MU_K]):
+        vs = 0.0
+    if par[P_WALL_SIDE] * vs > 0.0:
+        return False
+    before = kinetic_energy(y, par)
+    pre = y[1]
+    post = -par[P_E_W] * pre
+    rx, ry = point_offset(j, 0.0, par)
+    tmp = y.copy()
+    tmp[0] = 0.0
+    set_cm_velocity(tmp, par, vs - post * ry, post * rx, post)
+    tmp[4] = -(ry + hmid(par))
+    after = kinetic_energy(tmp, par)
+    if after > before:
+        return False
+    y[:] = tmp
+    met[M_WALL_IMPACTS] += 1
+    log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, 0.0, s)
+    # chatter, or an elastic bounce below the resolution (the wall
+    # model's rule: e_w = 1 never shortens the bounces): the rotation stops
+    bj = par[C_B2] if j == 1 else par[C_B1]
+    R = math.sqrt(bj * bj + par[C_H1] * par[C_H1])
+    rebound = 0.5 * post * post * (par[C_IG] + R * R) / (par[P_G] * R)
+    chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
+    met[M_T_LAST_IMPACT] = t
+    if (chatter or abs(post) < opt[O_EPS_OMEGA]
+            or elastic_below_resolution(par[P_E_W], rebound,
+                                        1.0 - math.cos(alpha_of(s, par)),
+                                        opt)):
+        y[1] = 0.0
+        y[3] = vs
+    return True
+
+
+@jit
+def pick_after_hogan(t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    """The mode after ``hogan_impact``: rocking on on the same pivot, or,
+    with the rotation stopped, the flat pick (face rest)."""
+    if y[1] == 0.0:
+        st = pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+        if disc[D_MODE] == MODE_REST:
+            log_event(log, cnt, t, EV_REST, 0.0, 0.0, 0.0, 0)
+        return st
+    j = 1 if disc[D_PIVOT] > 0 else 0
     return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
 
 
@@ -2680,6 +2744,10 @@ def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
         if y[3] != 0.0:
             st = slip_state(sign_of(y[3]))
             set_contacts(disc, st, st, CS_OPEN)
+        elif par[C_GAP] == 0.0:
+            # gap 0: the face stands on the wall from the start (face rest)
+            set_contacts(disc, CS_STICK, CS_STICK, CS_WALL_BASE)
+            disc[D_WALL_REST] = 1
         else:
             set_contacts(disc, CS_STICK, CS_STICK, CS_OPEN)
         track_slide(y, par, disc, met)
