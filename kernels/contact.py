@@ -821,10 +821,12 @@ def event(k, t, y, par, disc, hdr, smp):
         if wall_top(disc[D_CS2]):
             # top-corner ladder (top_ladder): the wall's force reaching 0
             return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
-        gap, vn, _vt = point_kin(2, y, par)
-        if vn < 0.0:
-            return gap, vn, True
-        return np.inf, 0.0, True
+        # the gap also while the corner moves away: a rock toward the wall
+        # that crosses it and turns back inside one step is located (a
+        # block slid to within 2h theta of the wall; the step's end moves
+        # away, so a gap returned only while approaching missed it)
+        g, gd = approach_gap(2, y, par)
+        return g, gd, True
     if k > K_PASS_ALPHA:
         return np.inf, 0.0, True
     acc = np.empty(3)
