@@ -821,12 +821,24 @@ def event(k, t, y, par, disc, hdr, smp):
         if wall_top(disc[D_CS2]):
             # top-corner ladder (top_ladder): the wall's force reaching 0
             return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
-        # the gap also while the corner moves away: a rock toward the wall
-        # that crosses it and turns back inside one step is located (a
-        # block slid to within 2h theta of the wall; the step's end moves
-        # away, so a gap returned only while approaching missed it)
-        g, gd = approach_gap(2, y, par)
-        return g, gd, True
+        if par[C_GAP] == 0.0 and (1 if s > 0 else 0) != near_index(par):
+            # gap 0, rocking on the far corner: the wall-side face is
+            # vertical, so the top corner reaches the wall with the base
+            # corner below it, at theta = 0 (K_IMPACT: Hogan's impact), or
+            # after it (K_WALL_BASE)
+            return np.inf, 0.0, True
+        gap, vn, _vt = point_kin(2, y, par)
+        if vn < 0.0:
+            return gap, vn, True
+        # moving away but inside the wall beyond the contact band: a rock
+        # toward the wall that crossed it and turned back inside one step
+        # (a block slid to within 2h theta of the wall), located; not a
+        # tangency at rounding level (a gap of exactly 2h touched at
+        # theta = pi / 2)
+        bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
+        if gap < -FACE_RTOL * bw:
+            return gap, vn, True
+        return np.inf, 0.0, True
     if k > K_PASS_ALPHA:
         return np.inf, 0.0, True
     acc = np.empty(3)
@@ -1591,8 +1603,11 @@ def hogan_impact(t, y, par, disc, opt, met, log, cnt):
     tmp[0] = 0.0
     set_cm_velocity(tmp, par, vs - post * ry, post * rx, post)
     tmp[4] = -(ry + hmid(par))
-    after = kinetic_energy(tmp, par)
-    if after > before:
+    # a sticking pivot: Hogan's map scales the rotation's energy by e_w^2
+    # (tested on the slipping pivot only: with e_w = 1 the rounding of
+    # ``before``, whose pivot velocity is the integration drift, not 0,
+    # turned every impact into a face impact)
+    if vs != 0.0 and kinetic_energy(tmp, par) > before:
         return False
     y[:] = tmp
     met[M_WALL_IMPACTS] += 1
