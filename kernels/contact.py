@@ -91,7 +91,11 @@ reaching 0 or the flat landing).  Ground impacts while rocking
 (theta crosses 0) use the map of kernels/friction.py with the sides apart
 (``corner_impact``: restitution e of the impact, algebraic slip rule,
 Routh's method where it fails), so mu = inf reproduces kernels/rigid.py
-(its rigid_body entries for b1 != b2) and finite mu kernels/friction.py.  After every
+(its rigid_body entries for b1 != b2) and finite mu kernels/friction.py.
+Gap 0 (C_GAP = 0, the face on the wall at the start: face rest): back at
+theta = 0 on the far corner the base corner meets ground and wall
+together, Hogan's impact (``hogan_impact``: pivot kept, theta'+ = -e_w
+theta'-), so mu = inf reproduces kernels/wall.py at gap 0.  After every
 impact the mode is picked again.  Stick-slip and impact chatter end by the
 rest rule (O_EPS_OMEGA, O_EPS_T) as in kernels/friction.py.
 
