@@ -1611,16 +1611,22 @@ def hogan_impact(t, y, par, disc, opt, met, log, cnt):
     # (tested on the slipping pivot only: with e_w = 1 the rounding of
     # ``before``, whose pivot velocity is the integration drift, not 0,
     # turned every impact into a face impact)
-    if vs != 0.0 and kinetic_energy(tmp, par) > before:
+    after = kinetic_energy(tmp, par)
+    if vs != 0.0 and after > before:
         return False
+    bj = par[C_B2] if j == 1 else par[C_B1]
+    R2 = bj * bj + par[C_H1] * par[C_H1]
+    if vs == 0.0:
+        # the pre-impact energy of the rotation about the resting pivot
+        before = 0.5 * pre * pre * (par[C_IG] + R2)
+    check_energy(before, after, met)
     y[:] = tmp
     met[M_WALL_IMPACTS] += 1
     log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, 0.0, s)
     # chatter, or an elastic bounce below the resolution (the wall
     # model's rule: e_w = 1 never shortens the bounces): the rotation stops
-    bj = par[C_B2] if j == 1 else par[C_B1]
-    R = math.sqrt(bj * bj + par[C_H1] * par[C_H1])
-    rebound = 0.5 * post * post * (par[C_IG] + R * R) / (par[P_G] * R)
+    R = math.sqrt(R2)
+    rebound = 0.5 * post * post * (par[C_IG] + R2) / (par[P_G] * R)
     chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
     met[M_T_LAST_IMPACT] = t
     if (chatter or abs(post) < opt[O_EPS_OMEGA]
