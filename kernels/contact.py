@@ -91,7 +91,11 @@ reaching 0 or the flat landing).  Ground impacts while rocking
 (theta crosses 0) use the map of kernels/friction.py with the sides apart
 (``corner_impact``: restitution e of the impact, algebraic slip rule,
 Routh's method where it fails), so mu = inf reproduces kernels/rigid.py
-(its rigid_body entries for b1 != b2) and finite mu kernels/friction.py.  After every
+(its rigid_body entries for b1 != b2) and finite mu kernels/friction.py.
+Gap 0 (C_GAP = 0, the face on the wall at the start: face rest): back at
+theta = 0 on the far corner the base corner meets ground and wall
+together, Hogan's impact (``hogan_impact``: pivot kept, theta'+ = -e_w
+theta'-), so mu = inf reproduces kernels/wall.py at gap 0.  After every
 impact the mode is picked again.  Stick-slip and impact chatter end by the
 rest rule (O_EPS_OMEGA, O_EPS_T) as in kernels/friction.py.
 
@@ -161,8 +165,8 @@ from .config import jit, jit_parallel
 from .excitation import excitation_end, ground
 from .friction import kinetic as fr_kinetic
 from .friction import routh_general
-from .hybrid import (check_energy, init_metrics, integrate_hybrid, log_event,
-                     sweep_rows)
+from .hybrid import (check_energy, elastic_below_resolution, init_metrics,
+                     integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, D_WALL_REST,
                      EV_CONTACT, EV_FLIGHT, EV_IMPACT, EV_REST, EV_SLIP,
                      EV_STICK, EV_UPLIFT, EV_WALL_IMPACT, EV_WALL_RELEASE,
@@ -821,8 +825,22 @@ def event(k, t, y, par, disc, hdr, smp):
         if wall_top(disc[D_CS2]):
             # top-corner ladder (top_ladder): the wall's force reaching 0
             return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
+        if par[C_GAP] == 0.0 and (1 if s > 0 else 0) != near_index(par):
+            # gap 0, rocking on the far corner: the wall-side face is
+            # vertical, so the top corner reaches the wall with the base
+            # corner below it, at theta = 0 (K_IMPACT: Hogan's impact), or
+            # after it (K_WALL_BASE)
+            return np.inf, 0.0, True
         gap, vn, _vt = point_kin(2, y, par)
         if vn < 0.0:
+            return gap, vn, True
+        # moving away but inside the wall beyond the contact band: a rock
+        # toward the wall that crossed it and turned back inside one step
+        # (a block slid to within 2h theta of the wall), located; not a
+        # tangency at rounding level (a gap of exactly 2h touched at
+        # theta = pi / 2)
+        bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
+        if gap < -FACE_RTOL * bw:
             return gap, vn, True
         return np.inf, 0.0, True
     if k > K_PASS_ALPHA:
@@ -1506,6 +1524,10 @@ def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
         # the block comes down flat with its face on the wall: rocking on
         # the wall-side corner is blocked, a face impact
         met[M_IMPACTS] += 1
+        if par[C_GAP] == 0.0 and hogan_impact(t, y, par, disc, opt, met, log,
+                                              cnt):
+            return pick_after_hogan(t, y, par, disc, hdr, smp, opt, met, log,
+                                    cnt)
         log_event(log, cnt, t, EV_IMPACT, y[1], 0.0, 0.0, -s)
         return face_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
                            False)
@@ -1557,6 +1579,75 @@ def ground_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
                      st if j == 1 else CS_OPEN, CS_OPEN)
         disc[D_PIVOT] = -s
         return RUNNING
+    return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
+@jit
+def hogan_impact(t, y, par, disc, opt, met, log, cnt):
+    """Gap 0 (Hogan 1992, kernels/wall.py's combined impact): rocking on
+    the far corner back to theta = 0, the wall-side base corner meets the
+    ground and the wall together; the pivot is kept, theta'+ = -e_w
+    theta'-, and its slip velocity too.  Returns False (y untouched) where
+    that map does not apply: the pivot slipping toward the wall (the face
+    arrives moving into it), or the slip's share of the kinetic energy
+    making the map gain energy (theta' and the slip of opposite senses);
+    the caller then takes the face impact (plastic, dissipative)."""
+    s = disc[D_PIVOT]
+    j = 1 if s > 0 else 0
+    _g, _vn, vs = point_kin(j, y, par)
+    if abs(vs) <= V_TOL or not np.isfinite(par[C_MU_K]):
+        vs = 0.0
+    if par[P_WALL_SIDE] * vs > 0.0:
+        return False
+    before = kinetic_energy(y, par)
+    pre = y[1]
+    post = -par[P_E_W] * pre
+    rx, ry = point_offset(j, 0.0, par)
+    tmp = y.copy()
+    tmp[0] = 0.0
+    set_cm_velocity(tmp, par, vs - post * ry, post * rx, post)
+    tmp[4] = -(ry + hmid(par))
+    # a sticking pivot: Hogan's map scales the rotation's energy by e_w^2
+    # (tested on the slipping pivot only: with e_w = 1 the rounding of
+    # ``before``, whose pivot velocity is the integration drift, not 0,
+    # turned every impact into a face impact)
+    after = kinetic_energy(tmp, par)
+    if vs != 0.0 and after > before:
+        return False
+    bj = par[C_B2] if j == 1 else par[C_B1]
+    R2 = bj * bj + par[C_H1] * par[C_H1]
+    if vs == 0.0:
+        # the pre-impact energy of the rotation about the resting pivot
+        before = 0.5 * pre * pre * (par[C_IG] + R2)
+    check_energy(before, after, met)
+    y[:] = tmp
+    met[M_WALL_IMPACTS] += 1
+    log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, 0.0, s)
+    # chatter, or an elastic bounce below the resolution (the wall
+    # model's rule: e_w = 1 never shortens the bounces): the rotation stops
+    R = math.sqrt(R2)
+    rebound = 0.5 * post * post * (par[C_IG] + R2) / (par[P_G] * R)
+    chatter = t - met[M_T_LAST_IMPACT] < opt[O_EPS_T]
+    met[M_T_LAST_IMPACT] = t
+    if (chatter or abs(post) < opt[O_EPS_OMEGA]
+            or elastic_below_resolution(par[P_E_W], rebound,
+                                        1.0 - math.cos(alpha_of(s, par)),
+                                        opt)):
+        y[1] = 0.0
+        y[3] = vs
+    return True
+
+
+@jit
+def pick_after_hogan(t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    """The mode after ``hogan_impact``: rocking on on the same pivot, or,
+    with the rotation stopped, the flat pick (face rest)."""
+    if y[1] == 0.0:
+        st = pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)
+        if disc[D_MODE] == MODE_REST:
+            log_event(log, cnt, t, EV_REST, 0.0, 0.0, 0.0, 0)
+        return st
+    j = 1 if disc[D_PIVOT] > 0 else 0
     return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
 
 
@@ -2680,6 +2771,10 @@ def init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
         if y[3] != 0.0:
             st = slip_state(sign_of(y[3]))
             set_contacts(disc, st, st, CS_OPEN)
+        elif par[C_GAP] == 0.0:
+            # gap 0: the face stands on the wall from the start (face rest)
+            set_contacts(disc, CS_STICK, CS_STICK, CS_WALL_BASE)
+            disc[D_WALL_REST] = 1
         else:
             set_contacts(disc, CS_STICK, CS_STICK, CS_OPEN)
         track_slide(y, par, disc, met)

@@ -176,9 +176,6 @@ def contact_par(body, friction, wall=None):
     par[K.C_MU_K] = friction.mu_k
     par[K.C_GAP] = np.inf
     if wall is not None:
-        if wall.gap == 0.0:
-            raise ValueError("wall: gap = 0 (Hogan's one-sided rocking) is not in the contact model yet; "
-                             "run it without friction and flight (the wall model)")
         top = par[K.C_HT2] if wall.side > 0 else par[K.C_HT1]
         if wall.height is not None and wall.height < par[K.C_H1] + top:
             raise ValueError("wall: a wall lower than the block (height < 2h; for a RigidBody, than its "
