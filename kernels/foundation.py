@@ -69,8 +69,9 @@ from .hybrid import (book_time, check_energy, final_status, init_metrics,
                      integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
                      EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST, MODE_ROCK,
-                     M_IMPACTS, M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_UPLIFT,
-                     N_DISC, O_T0, RUNNING)
+                     M_IMPACTS, M_MAX_THETA_NEG, M_MAX_THETA_POS,
+                     M_T_EXC_END, M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_UPLIFT,
+                     N_DISC, O_EARLY_EXIT, O_T0, RUNNING, S_ON)
 from .rigid import (P_ALPHA, P_G, P_P, P_THETA_OVER,
                     overturned, passed_alpha, theta_ddot, track_rotation)
 
@@ -321,10 +322,54 @@ def never_static(t, y, par, disc, hdr, smp):
 
 
 @jit
+def ts_stays_in_contact(t, y, par, hdr, met):
+    """Exact sufficient test (early decision): a symmetric block in full
+    contact after the excitation, on level ground, never lifts a corner again
+    and never exceeds its rotation maxima so far.
+
+    With u = -y_c, w = b sin q, delta_eq = M g / (2 k_v) and the energy above
+    the static equilibrium dE = T + k (u - delta_eq)^2 + k w^2
+    - M g h (1 - cos q), free motion in full contact has
+    d(dE)/dt = -c_v (delta_R'^2 + delta_L'^2) <= 0.  As 1 - cos q <= sin^2 q,
+    dE >= k (u - delta_eq)^2 + kappa w^2 + T with kappa = k - M g h / b^2 > 0,
+    and a corner's vertical speed obeys delta'^2 <= 2 T (1/M + R^2/I_G).  A
+    corner force k delta + c delta' = 0 means k (delta - delta_eq) + c delta'
+    = -M g / 2, which by Cauchy-Schwarz needs
+    dE (k + k^2/kappa + 2 c^2 (1/M + R^2/I_G)) >= (M g / 2)^2; and
+    |sin q| <= sqrt(dE / kappa) / b bounds the rotation for good."""
+    if t < met[M_T_EXC_END] or hdr[S_ON] != 0.0 or par[P_B_SKEW] != 0.0:
+        return False
+    M = par[P_MASS]
+    g = par[P_G]
+    h = par[P_H]
+    b = par[P_B]
+    k = par[P_KV]
+    c = par[P_CV]
+    kappa = k - M * g * h / (b * b)
+    if not kappa > 0.0:
+        return False
+    sq = math.sin(y[2])
+    half = math.sin(0.5 * y[2])
+    du = -y[0] - 0.5 * M * g / k
+    w = b * sq
+    vx = y[1] - h * sq * y[3]
+    vy = h * math.cos(y[2]) * y[3]
+    dE = (0.5 * M * (vx * vx + vy * vy) + 0.5 * par[P_I_G] * y[3] * y[3]
+          + k * du * du + k * w * w - 2.0 * M * g * h * half * half)
+    m_inv = 1.0 / M + (b * b + h * h) / par[P_I_G]
+    if not dE * (k + k * k / kappa + 2.0 * c * c * m_inv) < 0.25 * (M * g) ** 2:
+        return False
+    s_max = math.sqrt(max(dE, 0.0) / kappa) / b
+    return s_max < 1.0 and math.asin(s_max) <= min(met[M_MAX_THETA_POS],
+                                                  met[M_MAX_THETA_NEG])
+
+
+@jit
 def ts_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     track_rotation(y[2], met)
     book_time(t, disc, met)
-    if at_end:
+    if at_end or (opt[O_EARLY_EXIT] != 0.0 and disc[D_MODE] == MODE_REST
+                  and ts_stays_in_contact(t, y, par, hdr, met)):
         return final_status(disc, met)
     return RUNNING
 

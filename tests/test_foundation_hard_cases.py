@@ -1,0 +1,62 @@
+"""Hard cases of the foundation family found by bench/fuzz.py (issue #14), each with a definite
+status, finite results and an independent check of its physics."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import fastrock as fr
+from fastrock.model.foundation import TwoSpringFoundation
+
+
+def _definite(run):
+    assert not run.status.startswith("failed"), run.status
+    m = run.metrics
+    for k in ("max_rotation", "time_end"):
+        assert np.isfinite(m[k]), (k, m[k])
+    return m
+
+
+# foundation:2027:109: a slender block (b/h = 0.0127) on two-spring corners (omega/p = 29.3,
+# zeta = 0.103: the vertical mode is overdamped, zeta_v ~ 9, its fast eigenvalue -2 c_v/M ~ -5e5
+# 1/s bounds the explicit step to ~6e-6 s) under a half-sine just below the rigid uplift
+# threshold.  The free vibration after the pulse used to exhaust the 2e6-step budget in 10 s of
+# t_after; the early decision ts_stays_in_contact ends it once the energy above the static
+# equilibrium can no longer lift a corner or raise the rotation maxima.
+HARD_109 = dict(b=0.0007735112837389468, h=0.060891575164387146, omega_over_p=29.286520218216538,
+                zeta=0.1030087850670467, mass=57.131286380556205, rtol=1.5869936196274667e-07)
+
+
+def _scene_109():
+    body = fr.RigidBlock.rectangle(HARD_109["b"], HARD_109["h"])
+    fnd = TwoSpringFoundation.from_vibration(body, HARD_109["omega_over_p"] * body.p,
+                                             HARD_109["zeta"], HARD_109["mass"])
+    return body, fnd
+
+
+def test_two_spring_below_uplift_decided_early():
+    """The spectrum cells of foundation:2027:109 that ran out of steps end definite and safe;
+    simulate (which runs foundations to the end) over a t_after the step budget allows, past
+    each cell's decision, gives the same status, maxima and impacts: the decision bounds every
+    later rotation by the maxima so far."""
+    body, fnd = _scene_109()
+    amp, freqs = 0.9998623243667234, [0.1213432946985018, 0.144828332337818]
+    solver = fr.Solver(rtol=HARD_109["rtol"])
+    df = fr.overturning_spectrum(body, [amp], freqs, "both", pulse="half-sine", foundation=fnd,
+                                 mass=HARD_109["mass"], solver=solver, progress=False)
+    assert len(df) == 4
+    for _, r in df.iterrows():
+        assert r["status"].startswith("safe"), r["status"]
+        assert np.isfinite(r["max_rotation"]) and r["max_rotation"] < body.alpha
+        pulse = fr.Pulse(amp, r["frequency_ratio"], int(r["sign"]), "half-sine",
+                         amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+        t_end = pulse.end_time(body)
+        assert t_end < r["time_end"] < t_end + 10.0
+        full = fr.simulate(body, pulse, foundation=fnd, mass=HARD_109["mass"], solver=solver,
+                           t_after=r["time_end"] - t_end + 0.5)
+        m = _definite(full)
+        assert full.status == r["status"]
+        assert m["impacts"] == r["impacts"]
+        assert m["max_rotation"] == r["max_rotation"]
