@@ -71,7 +71,8 @@ from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
                      EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST, MODE_ROCK,
                      M_IMPACTS, M_MAX_THETA_NEG, M_MAX_THETA_POS,
                      M_T_EXC_END, M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_UPLIFT,
-                     N_DISC, O_EARLY_EXIT, O_T0, RUNNING, S_ON)
+                     N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0, RUNNING,
+                     S_ON)
 from .rigid import (P_ALPHA, P_G, P_P, P_THETA_OVER,
                     overturned, passed_alpha, theta_ddot, track_rotation)
 
@@ -100,10 +101,18 @@ def cross_event(theta, dtheta, disc):
 
 
 @jit
-def cross_transition(y, i_theta, disc):
-    """Flip the side; snap theta to exactly 0 (the root is within 4 ulp)."""
+def cross_transition(y, i_theta, disc, opt):
+    """Flip the side; snap theta to exactly 0 (the root is within 4 ulp).
+
+    A vibration decayed to rest at the crossing (theta exactly 0, slower
+    than eps_omega, the rest rule's threshold of physics.md 7) has no side
+    any more, as a run that starts upright at rest, until |theta| >
+    THETA_SIDE_EPS: at theta = 0, theta' ~ 1e-320 (underflow) both sides'
+    crossings would fire at once, forever (foundation:2027:37)."""
     if disc[D_SIDE] == 0:
         disc[D_SIDE] = 1 if y[i_theta] > 0.0 else -1
+    elif y[i_theta] == 0.0 and abs(y[i_theta + 1]) < opt[O_EPS_OMEGA]:
+        disc[D_SIDE] = 0
     else:
         disc[D_SIDE] = -disc[D_SIDE]
         y[i_theta] = 0.0
@@ -308,7 +317,7 @@ def ts_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return ts_corner_transition(-1.0, D_LEFT, t, y, par, disc, met, log,
                                     cnt)
     if k == TS_CROSS:
-        cross_transition(y, 2, disc)
+        cross_transition(y, 2, disc, opt)
         return RUNNING
     if k == TS_OVERTURN:
         return overturned(t, y[2], y[3], disc[D_PIVOT], met, log, cnt)
@@ -501,7 +510,7 @@ def sw_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         mark_uplift(t, y[0], y[1], disc[D_PIVOT], met, log, cnt)
         return RUNNING
     if k == SW_CROSS:
-        cross_transition(y, 0, disc)
+        cross_transition(y, 0, disc, opt)
         return RUNNING
     if k == SW_OVERTURN:
         return overturned(t, y[0], y[1], disc[D_PIVOT], met, log, cnt)
@@ -585,7 +594,7 @@ def ls_event(k, t, y, par, disc, hdr, smp):
 def ls_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     book_time(t, disc, met)
     if k == LS_CROSS:
-        cross_transition(y, 0, disc)
+        cross_transition(y, 0, disc, opt)
     else:
         track_rotation(y[0], met)
     return RUNNING

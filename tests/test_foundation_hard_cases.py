@@ -60,3 +60,36 @@ def test_two_spring_below_uplift_decided_early():
         assert full.status == r["status"]
         assert m["impacts"] == r["impacts"]
         assert m["max_rotation"] == r["max_rotation"]
+
+
+# foundation:2027:37: the linear vibration model (omega/p = 144.5, zeta = 0.19) at a fixed step
+# under a strong half-sine.  After the pulse the free vibration decays as exp(-124 t): at
+# t = 6.13 s theta underflowed to 0 with theta' = 2.6e-320, and both sides' zero-crossing events
+# fired at once, forever (failed:transition-loop).  A crossing slower than eps_omega now ends the
+# vibration's sides (the run is upright at rest, as one that starts so).
+HARD_37 = dict(b=0.044561272278008955, h=0.36341008928518054, omega_over_p=144.49927078230064,
+               zeta=0.19084912249259167, mass=16.961097410988437, dt=9.331737715228895e-05)
+
+
+@pytest.mark.parametrize("sign", [1, -1])
+def test_linear_vibration_decays_to_rest_at_a_fixed_step(sign):
+    from fastrock.model.foundation import LinearVibration
+    body = fr.RigidBlock.rectangle(HARD_37["b"], HARD_37["h"])
+    fnd = LinearVibration.from_vibration(body, HARD_37["omega_over_p"] * body.p, HARD_37["zeta"],
+                                         HARD_37["mass"])
+    pulse = fr.Pulse(37.11520024785257, 3.1806642834352497, sign, "half-sine",
+                     amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+    run = fr.simulate(body, pulse, foundation=fnd, mass=HARD_37["mass"],
+                      solver=fr.Solver(dt=HARD_37["dt"]))
+    m = _definite(run)
+    assert run.status == "safe:no-uplift"
+    assert m["time_end"] == pytest.approx(pulse.end_time(body) + 10.0, rel=1e-12)
+    H = run.history
+    assert np.isfinite(H[["theta", "theta_dot"]].to_numpy()).all()
+    assert abs(H["theta"].iloc[-1]) < 1e-300
+    # independent check: the same scene with the adaptive solver at a tight rtol, the peak
+    # reached during the pulse
+    ref = fr.simulate(body, pulse, foundation=fnd, mass=HARD_37["mass"],
+                      solver=fr.Solver(rtol=1e-11), t_after=1.0)
+    assert ref.status == "safe:no-uplift"
+    assert m["max_rotation"] == pytest.approx(ref.metrics["max_rotation"], rel=1e-6)
