@@ -72,7 +72,7 @@ from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
                      M_IMPACTS, M_MAX_THETA_NEG, M_MAX_THETA_POS,
                      M_T_EXC_END, M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_UPLIFT,
                      N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0, RUNNING,
-                     S_ON)
+                     SAFE_BOUNDED, S_ON)
 from .rigid import (P_ALPHA, P_G, P_P, P_THETA_OVER,
                     overturned, passed_alpha, theta_ddot, track_rotation)
 
@@ -331,7 +331,7 @@ def never_static(t, y, par, disc, hdr, smp):
 
 
 @jit
-def ts_stays_in_contact(t, y, par, hdr, met):
+def ts_stays_in_contact(y, par, met):
     """Exact sufficient test (early decision): a symmetric block in full
     contact after the excitation, on level ground, never lifts a corner again
     and never exceeds its rotation maxima so far.
@@ -346,8 +346,6 @@ def ts_stays_in_contact(t, y, par, hdr, met):
     = -M g / 2, which by Cauchy-Schwarz needs
     dE (k + k^2/kappa + 2 c^2 (1/M + R^2/I_G)) >= (M g / 2)^2; and
     |sin q| <= sqrt(dE / kappa) / b bounds the rotation for good."""
-    if t < met[M_T_EXC_END] or hdr[S_ON] != 0.0 or par[P_B_SKEW] != 0.0:
-        return False
     M = par[P_MASS]
     g = par[P_G]
     h = par[P_H]
@@ -374,12 +372,57 @@ def ts_stays_in_contact(t, y, par, hdr, met):
 
 
 @jit
+def ts_cannot_overturn(y, par, met):
+    """Exact sufficient test (early decision, any contact mode, symmetric
+    block after the excitation, level ground): the free motion never
+    overturns and never exceeds its rotation maxima so far.
+
+    E = T + M g y_G + k/2 sum max(delta_s, 0)^2 never grows in free motion
+    (module docstring).  At rotation q (|q| <= alpha) the lower corner's
+    spring alone gives E >= M g R cos(alpha - |q|) - (M g)^2 / (2 k), the
+    minimum over y_c: so from |q| < alpha the rotation stays below q_b with
+    cos(alpha - q_b) = (E + (M g)^2 / (2 k)) / (M g R) < 1."""
+    M = par[P_MASS]
+    g = par[P_G]
+    h = par[P_H]
+    b = par[P_B]
+    k = par[P_KV]
+    alpha = par[P_ALPHA]
+    q = y[2]
+    if not abs(q) < alpha:
+        return False
+    sq = math.sin(q)
+    cq = math.cos(q)
+    vx = y[1] - h * sq * y[3]
+    vy = h * cq * y[3]
+    dR = -(y[0] - b * sq)
+    dL = -(y[0] + b * sq)
+    spring = 0.5 * k * (max(dR, 0.0) ** 2 + max(dL, 0.0) ** 2)
+    E = (0.5 * M * (vx * vx + vy * vy) + 0.5 * par[P_I_G] * y[3] * y[3]
+         + M * g * (y[0] + h * cq) + spring)
+    Mg = M * g
+    # relative margin: E and the barrier are sums of terms of size M g R
+    c_b = (E + 0.5 * Mg * Mg / k) / (Mg * math.hypot(b, h)) + 1e-12
+    if not c_b < 1.0:
+        return False
+    q_b = alpha - math.acos(c_b)
+    return q_b <= min(met[M_MAX_THETA_POS], met[M_MAX_THETA_NEG])
+
+
+@jit
 def ts_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     track_rotation(y[2], met)
     book_time(t, disc, met)
-    if at_end or (opt[O_EARLY_EXIT] != 0.0 and disc[D_MODE] == MODE_REST
-                  and ts_stays_in_contact(t, y, par, hdr, met)):
+    if at_end:
         return final_status(disc, met)
+    if opt[O_EARLY_EXIT] == 0.0 or t < met[M_T_EXC_END] or hdr[S_ON] != 0.0 \
+            or par[P_B_SKEW] != 0.0:
+        return RUNNING
+    if disc[D_MODE] == MODE_REST:
+        if ts_stays_in_contact(y, par, met):
+            return final_status(disc, met)
+    elif ts_cannot_overturn(y, par, met):
+        return SAFE_BOUNDED
     return RUNNING
 
 

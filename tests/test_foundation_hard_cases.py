@@ -93,3 +93,49 @@ def test_linear_vibration_decays_to_rest_at_a_fixed_step(sign):
                       solver=fr.Solver(rtol=1e-11), t_after=1.0)
     assert ref.status == "safe:no-uplift"
     assert m["max_rotation"] == pytest.approx(ref.metrics["max_rotation"], rel=1e-6)
+
+
+# foundation:2027:411: a slender block (b/h = 0.0108) on stiff two-spring corners (omega/p = 226,
+# zeta = 0.086: the overdamped vertical mode bounds the explicit step to ~1e-6 s) at rtol 2e-10.
+# Short pulses set it rocking on a corner for the whole t_after (2.6 s of it took the 2e6-step
+# budget; the batch took longer than the fuzz's 120 s limit).  After the excitation its energy
+# E = T + M g y_G + springs never grows, and below M g R - (M g)^2/(2 k_v) it can never pass
+# alpha: ts_cannot_overturn ends the spectrum run safe:bounded once that bound also keeps the
+# rotation below its maxima so far.
+HARD_411 = dict(b=0.0008533285899270345, h=0.07922794078647816, omega_over_p=226.31865375829202,
+                zeta=0.08595060057194347, mass=1.5922170975359664, rtol=2.0044066687805604e-10)
+
+
+@pytest.mark.parametrize("amp,freq", [(2.1231692436643503, 5.173998603224901),
+                                      (12.6327569768902, 42.5487670090091)])
+def test_two_spring_rocking_bounded_after_the_pulse(amp, freq):
+    body = fr.RigidBlock.rectangle(HARD_411["b"], HARD_411["h"])
+    fnd = TwoSpringFoundation.from_vibration(body, HARD_411["omega_over_p"] * body.p,
+                                             HARD_411["zeta"], HARD_411["mass"])
+    solver = fr.Solver(rtol=HARD_411["rtol"])
+    df = fr.overturning_spectrum(body, [amp], [freq], "both", pulse="half-sine", foundation=fnd,
+                                 mass=HARD_411["mass"], solver=solver, progress=False)
+    assert list(df["status"]) == ["safe:bounded", "safe:bounded"]
+    assert df["max_rotation"].iloc[0] == df["max_rotation"].iloc[1]      # mirror
+    r = df.iloc[0]
+    pulse = fr.Pulse(amp, freq, int(r["sign"]), "half-sine", amplitude_unit="g_tan_alpha",
+                     frequency_unit="omega_p/p")
+    t_exc = pulse.end_time(body)
+    assert t_exc < r["time_end"] < t_exc + 1.0
+    # the full run well past the decision (as far as the step budget allows): it keeps rocking
+    # without passing its earlier maxima, and its energy never grows after the pulse
+    full = fr.simulate(body, pulse, foundation=fnd, mass=HARD_411["mass"], solver=solver,
+                       t_after=r["time_end"] - t_exc + 0.15)
+    m = _definite(full)
+    assert full.outcome == "safe"
+    assert m["max_rotation"] == r["max_rotation"]
+    H = full.history
+    after = H[H["t"] >= t_exc]
+    y, yd, q, qd = (after[c].to_numpy() for c in ("y", "y_dot", "theta", "theta_dot"))
+    M, g, b, h, k = HARD_411["mass"], body.g, body.b, body.h, fnd.k_v
+    IG = M * (b * b + h * h) / 3.0
+    spring = 0.5 * k * (np.maximum(b * np.sin(q) - y, 0) ** 2 + np.maximum(-b * np.sin(q) - y, 0) ** 2)
+    E = (0.5 * M * ((yd - h * np.sin(q) * qd) ** 2 + (h * np.cos(q) * qd) ** 2) + 0.5 * IG * qd ** 2
+         + M * g * (y + h * np.cos(q)) + spring)
+    assert np.max(np.diff(E)) <= 1e-7 * M * g * h
+    assert E.max() < M * g * math.hypot(b, h)
