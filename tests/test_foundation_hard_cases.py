@@ -139,3 +139,39 @@ def test_two_spring_rocking_bounded_after_the_pulse(amp, freq):
          + M * g * (y + h * np.cos(q)) + spring)
     assert np.max(np.diff(E)) <= 1e-7 * M * g * h
     assert E.max() < M * g * math.hypot(b, h)
+
+
+# foundation:2027:215: two-spring corners (omega/p = 223, zeta = 0.147, b/h = 0.05) at the fuzz's
+# fixed step dt = 1.08e-5 s, drawn from the vertical and rocking frequencies.  The corner
+# dashpots' overdamped mode (eigenvalue ~ -c_v/m_eff, m_eff the corner's effective mass, up to
+# 4.6e5 1/s while rocking) is beyond the fixed-step DP5's stability limit: failed:unstable-step
+# is the user's numerical limit, honest when the error names a stable step that works.
+HARD_215 = dict(b=0.008439480686083658, h=0.1674114268924415, omega_over_p=222.82766431489057,
+                zeta=0.1473626236141928, mass=248.179146026459, dt=1.077479060229978e-05)
+
+
+def test_two_spring_unstable_fixed_step_names_a_stable_one():
+    import re
+    import warnings
+    body = fr.RigidBlock.rectangle(HARD_215["b"], HARD_215["h"])
+    fnd = TwoSpringFoundation.from_vibration(body, HARD_215["omega_over_p"] * body.p,
+                                             HARD_215["zeta"], HARD_215["mass"])
+    amp, freq = 11.452189214144326, 2.5487015577598444
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        df = fr.overturning_spectrum(body, [amp], [freq], 1, pulse="one-sine", foundation=fnd,
+                                     mass=HARD_215["mass"], solver=fr.Solver(dt=HARD_215["dt"]),
+                                     progress=False)
+    assert df["status"].iloc[0] == "failed:unstable-step"
+    named = [float(m) for w in caught
+             for m in re.findall(r"dt <= ([0-9.eE+-]+) s would be stable", str(w.message))]
+    assert named and 0.0 < named[0] < HARD_215["dt"]
+    pulse = fr.Pulse(amp, freq, 1, "one-sine", amplitude_unit="g_tan_alpha",
+                     frequency_unit="omega_p/p")
+    run = fr.simulate(body, pulse, foundation=fnd, mass=HARD_215["mass"],
+                      solver=fr.Solver(dt=named[0]))
+    m = _definite(run)
+    ref = fr.simulate(body, pulse, foundation=fnd, mass=HARD_215["mass"],
+                      solver=fr.Solver(rtol=1e-10))
+    assert run.status == ref.status == "overturn:mode2"
+    assert m["time_overturn"] == pytest.approx(ref.metrics["time_overturn"], rel=1e-9)
