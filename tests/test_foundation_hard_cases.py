@@ -29,11 +29,10 @@ HARD_109 = dict(b=0.0007735112837389468, h=0.060891575164387146, omega_over_p=29
                 zeta=0.1030087850670467, mass=57.131286380556205, rtol=1.5869936196274667e-07)
 
 
-def _scene_109():
-    body = fr.RigidBlock.rectangle(HARD_109["b"], HARD_109["h"])
-    fnd = TwoSpringFoundation.from_vibration(body, HARD_109["omega_over_p"] * body.p,
-                                             HARD_109["zeta"], HARD_109["mass"])
-    return body, fnd
+def _scene(case, model=TwoSpringFoundation):
+    """The block and foundation of a fuzz case (``from_vibration`` as bench/fuzz.py builds it)."""
+    body = fr.RigidBlock.rectangle(case["b"], case["h"])
+    return body, model.from_vibration(body, case["omega_over_p"] * body.p, case["zeta"], case["mass"])
 
 
 def test_two_spring_below_uplift_decided_early():
@@ -41,7 +40,7 @@ def test_two_spring_below_uplift_decided_early():
     simulate (which runs foundations to the end) over a t_after the step budget allows, past
     each cell's decision, gives the same status, maxima and impacts: the decision bounds every
     later rotation by the maxima so far."""
-    body, fnd = _scene_109()
+    body, fnd = _scene(HARD_109)
     amp, freqs = 0.9998623243667234, [0.1213432946985018, 0.144828332337818]
     solver = fr.Solver(rtol=HARD_109["rtol"])
     df = fr.overturning_spectrum(body, [amp], freqs, "both", pulse="half-sine", foundation=fnd,
@@ -74,9 +73,7 @@ HARD_37 = dict(b=0.044561272278008955, h=0.36341008928518054, omega_over_p=144.4
 @pytest.mark.parametrize("sign", [1, -1])
 def test_linear_vibration_decays_to_rest_at_a_fixed_step(sign):
     from fastrock.model.foundation import LinearVibration
-    body = fr.RigidBlock.rectangle(HARD_37["b"], HARD_37["h"])
-    fnd = LinearVibration.from_vibration(body, HARD_37["omega_over_p"] * body.p, HARD_37["zeta"],
-                                         HARD_37["mass"])
+    body, fnd = _scene(HARD_37, LinearVibration)
     pulse = fr.Pulse(37.11520024785257, 3.1806642834352497, sign, "half-sine",
                      amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
     run = fr.simulate(body, pulse, foundation=fnd, mass=HARD_37["mass"],
@@ -109,9 +106,7 @@ HARD_411 = dict(b=0.0008533285899270345, h=0.07922794078647816, omega_over_p=226
 @pytest.mark.parametrize("amp,freq", [(2.1231692436643503, 5.173998603224901),
                                       (12.6327569768902, 42.5487670090091)])
 def test_two_spring_rocking_bounded_after_the_pulse(amp, freq):
-    body = fr.RigidBlock.rectangle(HARD_411["b"], HARD_411["h"])
-    fnd = TwoSpringFoundation.from_vibration(body, HARD_411["omega_over_p"] * body.p,
-                                             HARD_411["zeta"], HARD_411["mass"])
+    body, fnd = _scene(HARD_411)
     solver = fr.Solver(rtol=HARD_411["rtol"])
     df = fr.overturning_spectrum(body, [amp], [freq], "both", pulse="half-sine", foundation=fnd,
                                  mass=HARD_411["mass"], solver=solver, progress=False)
@@ -153,9 +148,7 @@ HARD_215 = dict(b=0.008439480686083658, h=0.1674114268924415, omega_over_p=222.8
 def test_two_spring_unstable_fixed_step_names_a_stable_one():
     import re
     import warnings
-    body = fr.RigidBlock.rectangle(HARD_215["b"], HARD_215["h"])
-    fnd = TwoSpringFoundation.from_vibration(body, HARD_215["omega_over_p"] * body.p,
-                                             HARD_215["zeta"], HARD_215["mass"])
+    body, fnd = _scene(HARD_215)
     amp, freq = 11.452189214144326, 2.5487015577598444
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
