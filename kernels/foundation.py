@@ -69,8 +69,10 @@ from .hybrid import (book_time, check_energy, final_status, init_metrics,
                      integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
                      EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST, MODE_ROCK,
-                     M_IMPACTS, M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_UPLIFT,
-                     N_DISC, O_T0, RUNNING)
+                     M_IMPACTS, M_MAX_THETA_NEG, M_MAX_THETA_POS,
+                     M_T_EXC_END, M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_UPLIFT,
+                     N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0, RUNNING,
+                     SAFE_BOUNDED, S_ON)
 from .rigid import (P_ALPHA, P_G, P_P, P_THETA_OVER,
                     overturned, passed_alpha, theta_ddot, track_rotation)
 
@@ -99,10 +101,18 @@ def cross_event(theta, dtheta, disc):
 
 
 @jit
-def cross_transition(y, i_theta, disc):
-    """Flip the side; snap theta to exactly 0 (the root is within 4 ulp)."""
+def cross_transition(y, i_theta, disc, opt):
+    """Flip the side; snap theta to exactly 0 (the root is within 4 ulp).
+
+    A vibration decayed to rest at the crossing (theta exactly 0, slower
+    than eps_omega, the rest rule's threshold of physics.md 7) has no side
+    any more, as a run that starts upright at rest, until |theta| >
+    THETA_SIDE_EPS: at theta = 0, theta' ~ 1e-320 (underflow) both sides'
+    crossings would fire at once, forever (foundation:2027:37)."""
     if disc[D_SIDE] == 0:
         disc[D_SIDE] = 1 if y[i_theta] > 0.0 else -1
+    elif y[i_theta] == 0.0 and abs(y[i_theta + 1]) < opt[O_EPS_OMEGA]:
+        disc[D_SIDE] = 0
     else:
         disc[D_SIDE] = -disc[D_SIDE]
         y[i_theta] = 0.0
@@ -307,7 +317,7 @@ def ts_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return ts_corner_transition(-1.0, D_LEFT, t, y, par, disc, met, log,
                                     cnt)
     if k == TS_CROSS:
-        cross_transition(y, 2, disc)
+        cross_transition(y, 2, disc, opt)
         return RUNNING
     if k == TS_OVERTURN:
         return overturned(t, y[2], y[3], disc[D_PIVOT], met, log, cnt)
@@ -321,11 +331,98 @@ def never_static(t, y, par, disc, hdr, smp):
 
 
 @jit
+def ts_stays_in_contact(y, par, met):
+    """Exact sufficient test (early decision): a symmetric block in full
+    contact after the excitation, on level ground, never lifts a corner again
+    and never exceeds its rotation maxima so far.
+
+    With u = -y_c, w = b sin q, delta_eq = M g / (2 k_v) and the energy above
+    the static equilibrium dE = T + k (u - delta_eq)^2 + k w^2
+    - M g h (1 - cos q), free motion in full contact has
+    d(dE)/dt = -c_v (delta_R'^2 + delta_L'^2) <= 0.  As 1 - cos q <= sin^2 q,
+    dE >= k (u - delta_eq)^2 + kappa w^2 + T with kappa = k - M g h / b^2 > 0,
+    and a corner's vertical speed obeys delta'^2 <= 2 T (1/M + R^2/I_G).  A
+    corner force k delta + c delta' = 0 means k (delta - delta_eq) + c delta'
+    = -M g / 2, which by Cauchy-Schwarz needs
+    dE (k + k^2/kappa + 2 c^2 (1/M + R^2/I_G)) >= (M g / 2)^2; and
+    |sin q| <= sqrt(dE / kappa) / b bounds the rotation for good."""
+    M = par[P_MASS]
+    g = par[P_G]
+    h = par[P_H]
+    b = par[P_B]
+    k = par[P_KV]
+    c = par[P_CV]
+    kappa = k - M * g * h / (b * b)
+    if not kappa > 0.0:
+        return False
+    sq = math.sin(y[2])
+    half = math.sin(0.5 * y[2])
+    du = -y[0] - 0.5 * M * g / k
+    w = b * sq
+    vx = y[1] - h * sq * y[3]
+    vy = h * math.cos(y[2]) * y[3]
+    dE = (0.5 * M * (vx * vx + vy * vy) + 0.5 * par[P_I_G] * y[3] * y[3]
+          + k * du * du + k * w * w - 2.0 * M * g * h * half * half)
+    m_inv = 1.0 / M + (b * b + h * h) / par[P_I_G]
+    if not dE * (k + k * k / kappa + 2.0 * c * c * m_inv) < 0.25 * (M * g) ** 2:
+        return False
+    s_max = math.sqrt(max(dE, 0.0) / kappa) / b
+    return s_max < 1.0 and math.asin(s_max) <= min(met[M_MAX_THETA_POS],
+                                                  met[M_MAX_THETA_NEG])
+
+
+@jit
+def ts_cannot_overturn(y, par, met):
+    """Exact sufficient test (early decision, any contact mode, symmetric
+    block after the excitation, level ground): the free motion never
+    overturns and never exceeds its rotation maxima so far.
+
+    E = T + M g y_G + k/2 sum max(delta_s, 0)^2 never grows in free motion
+    (module docstring).  At rotation q (|q| <= alpha) the lower corner's
+    spring alone gives E >= M g R cos(alpha - |q|) - (M g)^2 / (2 k), the
+    minimum over y_c: so from |q| < alpha the rotation stays below q_b with
+    cos(alpha - q_b) = (E + (M g)^2 / (2 k)) / (M g R) < 1."""
+    M = par[P_MASS]
+    g = par[P_G]
+    h = par[P_H]
+    b = par[P_B]
+    k = par[P_KV]
+    alpha = par[P_ALPHA]
+    q = y[2]
+    if not abs(q) < alpha:
+        return False
+    sq = math.sin(q)
+    cq = math.cos(q)
+    vx = y[1] - h * sq * y[3]
+    vy = h * cq * y[3]
+    dR = -(y[0] - b * sq)
+    dL = -(y[0] + b * sq)
+    spring = 0.5 * k * (max(dR, 0.0) ** 2 + max(dL, 0.0) ** 2)
+    E = (0.5 * M * (vx * vx + vy * vy) + 0.5 * par[P_I_G] * y[3] * y[3]
+         + M * g * (y[0] + h * cq) + spring)
+    Mg = M * g
+    # relative margin: E and the barrier are sums of terms of size M g R
+    c_b = (E + 0.5 * Mg * Mg / k) / (Mg * math.hypot(b, h)) + 1e-12
+    if not c_b < 1.0:
+        return False
+    q_b = alpha - math.acos(c_b)
+    return q_b <= min(met[M_MAX_THETA_POS], met[M_MAX_THETA_NEG])
+
+
+@jit
 def ts_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     track_rotation(y[2], met)
     book_time(t, disc, met)
     if at_end:
         return final_status(disc, met)
+    if opt[O_EARLY_EXIT] == 0.0 or t < met[M_T_EXC_END] or hdr[S_ON] != 0.0 \
+            or par[P_B_SKEW] != 0.0:
+        return RUNNING
+    if disc[D_MODE] == MODE_REST:
+        if ts_stays_in_contact(y, par, met):
+            return final_status(disc, met)
+    elif ts_cannot_overturn(y, par, met):
+        return SAFE_BOUNDED
     return RUNNING
 
 
@@ -456,7 +553,7 @@ def sw_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         mark_uplift(t, y[0], y[1], disc[D_PIVOT], met, log, cnt)
         return RUNNING
     if k == SW_CROSS:
-        cross_transition(y, 0, disc)
+        cross_transition(y, 0, disc, opt)
         return RUNNING
     if k == SW_OVERTURN:
         return overturned(t, y[0], y[1], disc[D_PIVOT], met, log, cnt)
@@ -540,7 +637,7 @@ def ls_event(k, t, y, par, disc, hdr, smp):
 def ls_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     book_time(t, disc, met)
     if k == LS_CROSS:
-        cross_transition(y, 0, disc)
+        cross_transition(y, 0, disc, opt)
     else:
         track_rotation(y[0], met)
     return RUNNING
