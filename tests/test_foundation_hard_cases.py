@@ -168,3 +168,22 @@ def test_two_spring_unstable_fixed_step_names_a_stable_one():
                       solver=fr.Solver(rtol=1e-10))
     assert run.status == ref.status == "overturn:mode2"
     assert m["time_overturn"] == pytest.approx(ref.metrics["time_overturn"], rel=1e-9)
+
+
+def test_simulate_takes_early_exit_on_a_foundation():
+    """simulate(..., foundation=..., early_exit=True) applies the two-spring model's early decisions
+    (it used to drop the argument): the spectrum cell's status and time, and the maxima of the full
+    run over the same t_after."""
+    body, fnd = _scene(HARD_109)
+    amp, freq = 0.9998623243667234, 0.1213432946985018
+    solver = fr.Solver(rtol=HARD_109["rtol"])
+    pulse = fr.Pulse(amp, freq, 1, "half-sine", amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+    cell = fr.overturning_spectrum(body, [amp], [freq], 1, pulse="half-sine", foundation=fnd,
+                                   mass=HARD_109["mass"], solver=solver, progress=False).iloc[0]
+    early = fr.simulate(body, pulse, foundation=fnd, mass=HARD_109["mass"], solver=solver, early_exit=True)
+    assert early.status == cell["status"]
+    assert early.metrics["time_end"] == pytest.approx(cell["time_end"], rel=1e-12)
+    t_end = pulse.end_time(body)
+    full = fr.simulate(body, pulse, foundation=fnd, mass=HARD_109["mass"], solver=solver,
+                       t_after=early.metrics["time_end"] - t_end + 0.5)
+    assert early.metrics["max_rotation"] == full.metrics["max_rotation"]

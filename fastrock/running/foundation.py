@@ -69,7 +69,8 @@ def _check_release(body, theta0, allow_overturn):
 def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertical=None,
                         theta0=0.0, dtheta0=0.0, duration=None, t_after=DEFAULT_T_AFTER,
                         t_eval=None, solver=None, rtol=None, atol=None, dt=None,
-                        max_steps=None, allow_overturn=False, history_capacity=None, ground=None):
+                        max_steps=None, allow_overturn=False, history_capacity=None, ground=None,
+                        early_exit=False):
     """Simulate a rigid block on a flexible foundation (or its free rocking).
 
     Parameters
@@ -91,8 +92,9 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
         starts at rest in its static equilibrium (a tilt downhill).
     allow_overturn : bool
         Allow ``|theta0| >= alpha`` (a release that overturns); otherwise ValueError.
-    duration, t_after, t_eval, solver, rtol, atol, dt, max_steps, ground :
-        As in :func:`fastrock.simulate`.
+    duration, t_after, t_eval, solver, rtol, atol, dt, max_steps, ground, early_exit :
+        As in :func:`fastrock.simulate` (the two-spring model's early decisions: after the
+        excitation, on level ground, a symmetric block that can no longer lift off or overturn).
 
     Returns
     -------
@@ -126,7 +128,7 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
         ground.check_scene(body, foundation=foundation)
     _check_release(body, theta0, V.boolean("allow_overturn", allow_overturn))
     hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
-                                        history_capacity, solver, False, ground)
+                                        history_capacity, solver, V.boolean("early_exit", early_exit), ground)
     y0 = foundation.initial_state(blk, theta0, dtheta0, ground)
     code, t, Y, D, lg, met, cnt = integrate_foundation(spec, y0, hdr, smp, opt, te, cap)
     if solver.dt:
