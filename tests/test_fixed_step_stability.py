@@ -153,3 +153,29 @@ def test_foundation_runs_name_a_checked_step_too():
     assert len(named) == 1
     again = simulate(block, Pulse(1.5, 2.0), foundation=foundation, dt=float(named[0][0]))
     assert again.status == named[0][1] and not again.status.startswith("failed")
+
+
+def test_checked_step_gives_a_small_step_the_budget_it_needs():
+    """checked_stable_step with a stand-in run: it starts from the kernels' estimate, halves while
+    the run diverges, and a step that needs more fixed steps than the budget runs with the budget a
+    user would give it (named in the warning)."""
+    from fastrock.kernels import layout as L
+    from fastrock.running.outcomes import checked_stable_step
+    opt = np.zeros(L.N_OPT)
+    opt[L.O_T0], opt[L.O_T_END], opt[L.O_MAX_STEPS], opt[L.O_DT_FIXED] = 0.0, 10.0, 2e6, 1e-4
+    tried = []
+
+    def run(o):
+        tried.append((o[L.O_DT_FIXED], o[L.O_MAX_STEPS]))
+        met = np.zeros(L.N_MET)
+        met[L.M_DT_STABLE] = np.nan
+        code = L.SAFE_REST if o[L.O_DT_FIXED] < 4e-6 and 10.0 / o[L.O_DT_FIXED] <= o[L.O_MAX_STEPS] \
+            else L.FAIL_UNSTABLE
+        return code, met
+
+    step, status, budget = checked_stable_step(run, opt, 1e-4, 2e-5)
+    assert [t[0] for t in tried] == [2e-5, 1e-5, 5e-6, 2.5e-6]
+    assert step == 2.5e-6 and status == "safe:rest"
+    assert budget == int(1.05 * 10.0 / 2.5e-6) + 1000 and tried[-1][1] == budget
+    assert tried[0][1] == 2e6                                  # 5e5 steps fit the budget as it was
+    assert checked_stable_step(lambda o: (L.FAIL_UNSTABLE, np.full(L.N_MET, np.nan)), opt, 1e-4, 2e-5)[0] is None

@@ -135,7 +135,7 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
         checked = None
         if code == L.FAIL_UNSTABLE:
             def rerun(o):
-                r = integrate_foundation(spec, y0, hdr, smp, o, te, cap)
+                r = integrate_foundation(spec, y0, hdr, smp, o, np.array([opt[L.O_T_END]]), 16)
                 return r[0], r[5]
             checked = checked_stable_step(rerun, opt, solver.dt, met[L.M_DT_STABLE])
         warn_unstable(code, met, solver.dt, checked=checked)

@@ -61,22 +61,31 @@ def _three_digits_down(x):
 def checked_stable_step(run, opt, dt, suggested, tries=8):
     """A fixed step at which a run that diverged at ``dt`` ends definite, found by running it again:
     from the kernel's suggestion (the step that brings the diverging step's local error within the
-    limit), then halving while the run still diverges, at most ``tries`` runs.  ``run(opt)`` returns
-    (status code, metrics).  Returns (dt, status name), or (None, the smallest dt tried) if none did."""
+    limit), then halving while the run still diverges, at most ``tries`` runs.  A step that needs
+    more fixed steps than the run's budget gets the budget a user would give it (as the front end's
+    error for such a step names it).  ``run(opt)`` returns (status code, metrics).  Returns (dt,
+    status name, the budget or None), or (None, the smallest dt tried, None) if none did."""
     import math
+
+    from fastrock._validate import MAX_STEPS
     step = suggested if math.isfinite(suggested) and 0.0 < suggested < dt else 0.5 * dt
+    span = opt[L.O_T_END] - opt[L.O_T0]
     for _ in range(tries):
         step = _three_digits_down(step)
         o = opt.copy()
         o[L.O_DT_FIXED] = step
+        budget = None
+        if span / step > opt[L.O_MAX_STEPS]:
+            budget = min(int(1.05 * span / step) + 1000, int(MAX_STEPS))
+            o[L.O_MAX_STEPS] = float(budget)
         code, met = run(o)
         if code != L.FAIL_UNSTABLE:
             if outcome_of(code) == "failed":
-                return None, step           # another limit (a step budget): no step to name
-            return step, status_of(code)
+                return None, step, None     # another limit: no step to name
+            return step, status_of(code), budget
         nxt = met[L.M_DT_STABLE]
         step = min(nxt if math.isfinite(nxt) and nxt > 0.0 else step, 0.5 * step)
-    return None, step
+    return None, step, None
 
 
 def warn_unstable(status, MET, dt, stacklevel=3, checked=None):
@@ -91,9 +100,10 @@ def warn_unstable(status, MET, dt, stacklevel=3, checked=None):
     if not bad.any():
         return
     if checked is not None:
-        step, how = checked
+        step, how, budget = checked
         if step is not None:
-            hint = f"; dt <= {step:.3g} s would be stable (checked: at that step this run ends {how})"
+            with_budget = "" if budget is None else f" with max_steps = {budget}"
+            hint = f"; dt <= {step:.3g} s would be stable (checked{with_budget}: at that step this run ends {how})"
         else:
             hint = (f"; no fixed step down to {how:.3g} s ended this run (checked): the motion is stiffer than "
                     "a fixed step follows, use the adaptive solver")

@@ -150,7 +150,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     if ground is not None:
         ground.check_lift_off(body, X.channel_peak(hdr, smp), spec.name, vertical)
 
-    def run(opt, cap):
+    def run(opt, cap, te=te):
         while True:
             y = y0.copy()
             met = np.zeros(L.N_MET)
@@ -166,7 +166,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
                 continue
             return code, met, hist_t, hist_y, hist_d, log, cnt
 
-    code, met, hist_t, hist_y, hist_d, log, cnt = run(opt, cap)
+    code, met, hist_t, hist_y, hist_d, log, cnt = run(opt, cap, te)
     nh = int(cnt[C_NHIST])
     hist = (hist_t[:nh].copy(), hist_y[:nh].copy(), hist_d[:nh].copy())
     history = partial(_history, hist, hdr, smp, spec, body)       # built when first read
@@ -186,7 +186,9 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     if solver.dt:
         checked = None
         if code == L.FAIL_UNSTABLE:
-            checked = checked_stable_step(lambda o: run(o, cap)[0:2], opt, solver.dt, met[L.M_DT_STABLE])
+            # the check keeps no history: one output time
+            te_end = np.array([opt[L.O_T_END]])
+            checked = checked_stable_step(lambda o: run(o, 16, te_end)[0:2], opt, solver.dt, met[L.M_DT_STABLE])
         warn_unstable(code, met, solver.dt, checked=checked)
     if DEBUG:
         metrics["energy_gains"] = int(met[L.M_ENERGY_GAINS])
