@@ -39,7 +39,7 @@ def test_each_row_is_the_scene_run(early_exit):
     assert df["scene"].tolist()[:2] == ["quiet", 1]
     assert len(set(df["kernel"])) >= 5
     for (_, row), scene in zip(df.iterrows(), scenes):
-        r = scene.run(early_exit=early_exit) if scene.foundation is None else scene.run()
+        r = scene.run(early_exit=early_exit)
         assert (row["kernel"], row["outcome"], row["status"]) == (r.kernel, r.outcome, r.status), scene.name
         assert row["max_rotation"] == r.metrics["max_rotation"], scene.name
         assert row["nfev"] == r.metrics["nfev"], scene.name
