@@ -331,6 +331,16 @@ def never_static(t, y, par, disc, hdr, smp):
 
 
 @jit
+def ts_kinetic(y, par):
+    """Kinetic energy of the block [J]: the centre of mass moves at
+    (y' - h sin q q', h cos q q') over the point below it."""
+    h = par[P_H]
+    vx = y[1] - h * math.sin(y[2]) * y[3]
+    vy = h * math.cos(y[2]) * y[3]
+    return 0.5 * par[P_MASS] * (vx * vx + vy * vy) + 0.5 * par[P_I_G] * y[3] * y[3]
+
+
+@jit
 def ts_stays_in_contact(y, par, met):
     """Exact sufficient test (early decision): a symmetric block in full
     contact after the excitation, on level ground, never lifts a corner again
@@ -359,10 +369,8 @@ def ts_stays_in_contact(y, par, met):
     half = math.sin(0.5 * y[2])
     du = -y[0] - 0.5 * M * g / k
     w = b * sq
-    vx = y[1] - h * sq * y[3]
-    vy = h * math.cos(y[2]) * y[3]
-    dE = (0.5 * M * (vx * vx + vy * vy) + 0.5 * par[P_I_G] * y[3] * y[3]
-          + k * du * du + k * w * w - 2.0 * M * g * h * half * half)
+    dE = (ts_kinetic(y, par) + k * du * du + k * w * w
+          - 2.0 * M * g * h * half * half)
     m_inv = 1.0 / M + (b * b + h * h) / par[P_I_G]
     if not dE * (k + k * k / kappa + 2.0 * c * c * m_inv) < 0.25 * (M * g) ** 2:
         return False
@@ -391,15 +399,10 @@ def ts_cannot_overturn(y, par, met):
     q = y[2]
     if not abs(q) < alpha:
         return False
-    sq = math.sin(q)
-    cq = math.cos(q)
-    vx = y[1] - h * sq * y[3]
-    vy = h * cq * y[3]
-    dR = -(y[0] - b * sq)
-    dL = -(y[0] + b * sq)
+    dR, _ = corner_compression(y, 1, par)
+    dL, _ = corner_compression(y, -1, par)
     spring = 0.5 * k * (max(dR, 0.0) ** 2 + max(dL, 0.0) ** 2)
-    E = (0.5 * M * (vx * vx + vy * vy) + 0.5 * par[P_I_G] * y[3] * y[3]
-         + M * g * (y[0] + h * cq) + spring)
+    E = ts_kinetic(y, par) + M * g * (y[0] + h * math.cos(q)) + spring
     Mg = M * g
     # relative margin: E and the barrier are sums of terms of size M g R
     c_b = (E + 0.5 * Mg * Mg / k) / (Mg * math.hypot(b, h)) + 1e-12

@@ -134,8 +134,8 @@ class Wall:
     @staticmethod
     def _top_radius(body, face):
         """Radius rho [m] of the body's rounded top corner on the wall side (0: a flat top)."""
-        rho = getattr(body, "top_radius", None)
-        if rho is None or (getattr(body, "kind", "") == "rigid_body" and body.top != "rounded"):
+        rho = getattr(body, "top_radius", None)         # set only with a rounded top (validated)
+        if rho is None:
             return 0.0
         if rho > face:
             raise ValueError(f"top_radius = {rho:.6g} m is larger than the height of the body's face toward the "
