@@ -320,6 +320,30 @@ singles("friction", "simulate", [
          excitation=O("Pulse", kind="rectangular", amplitude=0.3, duration=0.5)),
 ])
 
+# 3b. the contact model (rigid block + wall + friction, free flight) ---------------------------
+# frozen after the other families (kernels of 4728fc9), before the contact fuzz fixes
+CB = O("RigidBlock.rectangle", b=0.1, h=0.5)
+CB_SLENDER = O("RigidBlock.rectangle", b=0.02, h=0.8)
+spectrum("contact", "wall0.01-mu0.3-one-sine", CB, A8, F8, pulse="one-sine",
+         wall=O("Wall", gap=0.01), friction=O("Friction", mu_s=0.3))
+spectrum("contact", "wall0-mu0.25-0.2-half-sine", CB, A6, F6, pulse="half-sine",
+         wall=O("Wall", gap=0.0, side=1, restitution=0.6), friction=O("Friction", mu_s=0.25, mu_k=0.2))
+spectrum("contact", "slender-wall0.002-mu0.08-one-cosine", CB_SLENDER, A6, F6, pulse="one-cosine",
+         wall=O("Wall", gap=0.002, restitution=0.1), friction=O("Friction", mu_s=0.08, mu_k=0.07))
+spectrum("contact", "flight-wall0.02-one-sine", CB, A6, F6, pulse="one-sine",
+         wall=O("Wall", gap=0.02, side=1), friction=O("Friction", mu_s=0.5, lift_off="flight"))
+singles("contact", "simulate", [
+    *[dict(body=CB, wall=O("Wall", gap=0.01), friction=O("Friction", mu_s=mu), excitation=pulse(a, f, sign=s))
+      for mu in (0.12, 0.5) for a in (1.3, 4.2) for f in (1.7, 5.1) for s in (1, -1)],
+    *[dict(body=CB_SLENDER, wall=O("Wall", gap=g, side=-1, restitution=0.1),
+           friction=O("Friction", mu_s=0.06, mu_k=0.05), excitation=pulse(a, 0.6, kind="one-cosine"))
+      for g in (0.0, 0.001) for a in (2.4, 6.0)],
+    dict(body=CB, wall=O("Wall", gap=0.02), friction=O("Friction", mu_s=0.3), theta0=0.15, duration=5.0),
+    dict(body=CB, friction=O("Friction", mu_s=0.5, lift_off="flight"), excitation=pulse(2.0, 2.5),
+         vertical=O("Pulse", kind="rectangular", amplitude=1.2, sign=-1, amplitude_unit="g",
+                    duration=0.2, t_start=0.1)),
+])
+
 # 4. flexible body (both impact maps) -------------------------------------------------------
 FB9 = O("FlexibleBody", alpha=0.3, p=2.0, omega_n_over_p=9.0, zeta=0.05)
 FB30 = O("FlexibleBody", alpha=0.3, p=2.0, omega_n_over_p=30.0, zeta=0.02)
