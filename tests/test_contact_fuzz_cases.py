@@ -1,0 +1,91 @@
+"""Reproductions of the contact model's failing cells from the 20 000-case fuzz run (seed 2027)
+(issue #14: no failed runs).  Each scene is the fuzz batch's own, written out.
+
+- ``contact:2027:2`` (failed:face-contact, 23 cells): a 2.8 mm wide, 70 mm tall block beside a
+  wall at a 1.3 mm gap slides into the wall while rocking on its far corner, and its wall-side
+  base corner then rides on the wall (the "ladder": the pivot slides on the ground, the corner
+  slides down the wall).  That contact holds at acceleration level only, so its gap drifts at
+  the integration tolerance (rtol 9e-5: 2e-8 m in 0.1 s), past the bug guard's band of 1e-6 of
+  the half-width (1.4e-9 m).  The drift is now an event at half that band, where the state is
+  projected back onto the contacts.
+- ``contact:2027:180`` (failed:transition-loop): the corner at rest on the wall, 3e-10 m inside
+  it (within the band) and accelerating away, fired the wall event at once, again and again
+  (an impact at zero speed changes nothing).  It is now put on the wall and the phase goes on.
+"""
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from fastrock import Friction, Pulse, RigidBlock, Solver, Wall, overturning_spectrum, simulate
+
+FACE_RTOL = 1e-6        # kernels/contact.py: the guard's band, relative to the half-width
+
+CASE2 = dict(
+    body=RigidBlock.rectangle(b=0.001383711710652716, h=0.07002565865842172),
+    wall=Wall(0.001310650438898358, side=-1, restitution=0.06543614463161063),
+    friction=Friction(0.05543887549567501, 0.05158444275340749, slide_tolerance=1e-3),
+    solver=Solver(rtol=8.972014888873905e-05, eps_t=1e-9, eps_omega=1e-9),
+    amplitude=2.4528846094647125,
+    frequencies=(0.593540252985303, 0.13313857247255836, 0.15977016975588607, 0.22547211426625183),
+    pulse="one-cosine")
+
+CASE180 = dict(
+    body=RigidBlock.rectangle(b=0.0011843881657126482, h=0.07493084876406, e=0.6511115656558398),
+    wall=Wall(0.0003181923723903563, side=1, restitution=0.08904718330812789),
+    friction=Friction(0.05631528367206284, 0.05631528367206284, slide_tolerance=1e-3),
+    solver=Solver(rtol=2.9245692155519234e-06, eps_t=1e-9, eps_omega=1e-9),
+    amplitude=37.03510550360907, frequencies=(3.3937591327367373,), pulse="one-cosine")
+
+
+def _run(case, frequency, sign, wall=None):
+    pulse = Pulse(case["amplitude"], frequency, sign, case["pulse"], amplitude_unit="g_tan_alpha",
+                  frequency_unit="omega_p/p")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return simulate(case["body"], pulse, wall=wall or case["wall"], friction=case["friction"],
+                        solver=case["solver"], t_after=10.0)
+
+
+def _near_corner_gap(run, body, wall):
+    """Clear distance of the wall-side base corner to the wall on every history row, from the
+    geometry alone: the base's midpoint is at x = d and a base corner at d -+ b cos(theta)."""
+    h = run.history
+    x = h["d"].to_numpy() + wall.side * body.b * np.cos(h["theta"].to_numpy())
+    return body.b + wall.gap - wall.side * x
+
+
+@pytest.mark.parametrize("frequency", CASE2["frequencies"])
+@pytest.mark.parametrize("sign", (1, -1))
+def test_contact_2027_2_the_ladder_stays_out_of_the_wall(frequency, sign):
+    run = _run(CASE2, frequency, sign)
+    assert not run.status.startswith("failed"), run.status
+    gap = _near_corner_gap(run, CASE2["body"], CASE2["wall"])
+    assert gap.min() >= -FACE_RTOL * CASE2["body"].b
+    assert np.isfinite(run.history[["theta", "theta_dot", "d", "d_dot"]].to_numpy()).all()
+
+
+def test_contact_2027_2_the_spectrum_row_is_definite():
+    c = CASE2
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        df = overturning_spectrum(c["body"], [c["amplitude"]], list(c["frequencies"]), pulse=c["pulse"],
+                                  wall=c["wall"], friction=c["friction"], solver=c["solver"],
+                                  t_after=10.0, sign="both", progress=False)
+    assert len(df) == 8
+    assert not df["status"].astype(str).str.startswith("failed").any(), df["status"].tolist()
+
+
+def test_contact_2027_180_no_loop_and_mirror_symmetric():
+    c = CASE180
+    run = _run(c, c["frequencies"][0], 1)
+    assert not run.status.startswith("failed"), run.status
+    mirror = _run(c, c["frequencies"][0], -1, wall=Wall(c["wall"].gap, side=-1,
+                                                       restitution=c["wall"].restitution))
+    assert mirror.status == run.status
+    assert math.isclose(mirror.metrics["max_rotation"], run.metrics["max_rotation"], rel_tol=1e-6)
+    gap = _near_corner_gap(run, c["body"], c["wall"])
+    assert gap.min() >= -FACE_RTOL * c["body"].b
