@@ -11,6 +11,8 @@
 - ``contact:2027:180`` (failed:transition-loop): the corner at rest on the wall, 3e-10 m inside
   it (within the band) and accelerating away, fired the wall event at once, again and again
   (an impact at zero speed changes nothing).  It is now put on the wall and the phase goes on.
+- ``contact:2027:26`` (failed:step-budget): elastic-wall bounces held at the rounding level of
+  the energy for ever (see the test).
 """
 from __future__ import annotations
 
@@ -89,3 +91,32 @@ def test_contact_2027_180_no_loop_and_mirror_symmetric():
     assert math.isclose(mirror.metrics["max_rotation"], run.metrics["max_rotation"], rel_tol=1e-6)
     gap = _near_corner_gap(run, c["body"], c["wall"])
     assert gap.min() >= -FACE_RTOL * c["body"].b
+
+
+CASE26 = dict(
+    body=RigidBlock.rectangle(b=0.04926594088786383, h=1.6809525160873038, e=0.7465536000556361),
+    wall=Wall(0.3356304802903033, side=-1, restitution=1.0),
+    friction=Friction(0.15217896729060965, 0.15217896729060965, slide_tolerance=1e-3, lift_off="flight"),
+    solver=Solver(rtol=9.819625855187784e-08, eps_t=1e-9, eps_omega=1e-9),
+    amplitude=5.889969543261737, frequencies=(0.28453925915470063,), pulse="half-sine")
+
+
+def test_contact_2027_26_elastic_wall_bounces_end_at_rest():
+    """contact:2027:26 (failed:step-budget): the block slides to the wall and leans on it past
+    alpha; the wall is elastic (e_w = 1), so only the pivot's slip at each impact dissipates.
+    The bounces decayed geometrically to 5e-9 rad/s and then held there for ever (the pivot
+    slipping at each impact and sticking after it), 2e-6 s per bounce, 2e6 steps. Motion whose
+    kinetic energy is below g eps h (the resolution of the potential energy) is rounding: the
+    block now rests on the wall, leaning."""
+    c = CASE26
+    run = _run(c, c["frequencies"][0], 1)
+    assert run.status == "leaning"
+    ev = run.events
+    assert ev["event"].iloc[-1] == "wall-rest"
+    assert run.metrics["wall_impacts"] < 100
+    assert run.history["theta_dot"].iloc[-1] == 0.0
+    # the last bounces before the rest are far below any physical motion: under 1e-6 rad/s
+    last = ev[ev["event"] == "wall-impact"].iloc[-1]
+    assert abs(last["velocity_after"]) < 1e-6
+    # leaning on the wall past the block's own slenderness (it cannot come back)
+    assert abs(run.history["theta"].iloc[-1]) > c["body"].alpha
