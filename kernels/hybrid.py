@@ -369,6 +369,14 @@ def _all_finite(y):
     return True
 
 
+@jit
+def _any_nonzero(y):
+    for i in range(y.shape[0]):
+        if y[i] != 0.0:
+            return True
+    return False
+
+
 @jit_generic
 def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                      n_events, y, par, disc, hdr, smp, opt, t_eval, met,
@@ -407,6 +415,12 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
     term = np.empty(n_events, dtype=np.bool_)
     roots = np.empty(n_events)
     y_scale = np.abs(y)
+    # a run that has not moved has no scale yet: the error of its first
+    # fixed step out of rest is relative to what that step produced (a
+    # product of small quantities such as b theta theta' reads 1e-2 at a
+    # stable step, contact:2027:437), so divergence is judged from the
+    # second step on, once the motion has a scale
+    scaled = _any_nonzero(y_scale)
 
     store = hist_t.shape[0] > 0
     every_step = store and t_eval.shape[0] == 0
@@ -507,7 +521,8 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                 err = fixed_step_error(K, h, y_new, y_scale, atol)
                 if not err <= met[M_ERR_FIXED]:
                     met[M_ERR_FIXED] = err
-                if not err <= ERR_FIXED_MAX or not _all_finite(y_new):
+                if (scaled and not err <= ERR_FIXED_MAX) or \
+                        not _all_finite(y_new):
                     # a diverging step is no physics.  The error grows
                     # about as h^5 up to the limit: suggest a step inside.
                     met[M_DT_STABLE] = (0.5 * h * (ERR_FIXED_MAX / err) ** 0.2
@@ -518,6 +533,8 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                     a = abs(y_new[i])
                     if a > y_scale[i]:
                         y_scale[i] = a
+                if not scaled:
+                    scaled = _any_nonzero(y_scale)
             else:
                 # rk.py 111-171 ``_step_impl``
                 min_step = 10.0 * abs(ulp(t))

@@ -13,6 +13,8 @@
   (an impact at zero speed changes nothing).  It is now put on the wall and the phase goes on.
 - ``contact:2027:26`` (failed:step-budget): elastic-wall bounces held at the rounding level of
   the energy for ever (see the test).
+- ``contact:2027:437`` (failed:unstable-step): the first fixed step out of rest was judged
+  against a scale it had just created (see the test).
 """
 from __future__ import annotations
 
@@ -120,3 +122,23 @@ def test_contact_2027_26_elastic_wall_bounces_end_at_rest():
     assert abs(last["velocity_after"]) < 1e-6
     # leaning on the wall past the block's own slenderness (it cannot come back)
     assert abs(run.history["theta"].iloc[-1]) > c["body"].alpha
+
+
+def test_contact_2027_437_first_fixed_step_out_of_rest_is_not_divergence():
+    """contact:2027:437 (failed:unstable-step): an 11 g half-sine lifts a stout block off rest;
+    the first fixed step's error estimate of x' = b theta theta' sin(theta) (a product of small
+    quantities, 4.5e-9 m/s after the step) read 1.003e-2 of itself, just above the 1e-2 limit,
+    though the step is stable (the next steps read 3e-4 and below). A run that has not moved
+    has no scale to diverge from: divergence is judged from its second step on. The fixed-step
+    run now ends as the adaptive one does."""
+    body = RigidBlock.rectangle(b=0.09093088221432795, h=0.2671413900983182)
+    kw = dict(wall=Wall(3.7167105398545097e-09, side=-1, restitution=1.0),
+              friction=Friction(1.9905130224909826, 1.9905130224909826, slide_tolerance=1e-3,
+                                lift_off="flight"), t_after=10.0)
+    pulse = Pulse(33.41843630264841, 5.288490781055444, -1, "half-sine", amplitude_unit="g_tan_alpha",
+                  frequency_unit="omega_p/p")
+    fixed = simulate(body, pulse, solver=Solver(dt=0.0015996922652046818, rtol=1e-8), **kw)
+    adaptive = simulate(body, pulse, solver=Solver(rtol=1e-10), **kw)
+    assert adaptive.status == "overturn:mode2"
+    assert fixed.status == adaptive.status
+    assert math.isclose(fixed.metrics["time_overturn"], adaptive.metrics["time_overturn"], rel_tol=1e-3)

@@ -81,8 +81,8 @@ def test_every_case_is_frozen_and_every_file_is_a_case():
     expected = {c.path.name for c in CASES.values()}
     assert not expected - files, f"cases without a frozen file: {sorted(expected - files)}"
     assert not files - expected, f"frozen files without a case definition: {sorted(files - expected)}"
-    assert set(freeze.FAMILIES) == {"rigid", "wall", "friction", "flexible", "flexible_friction",
-                                    "foundation", "records", "vertical"}
+    assert set(freeze.FAMILIES) == {"rigid", "wall", "friction", "contact", "flexible",
+                                    "flexible_friction", "foundation", "records", "vertical"}
 
 
 def test_compare_reports_changed_rows_and_columns():
