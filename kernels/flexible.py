@@ -421,20 +421,23 @@ def barrier_profile(phi, a, c, k, g):
 
 
 @jit
-def bounded_free_rocking(y, s, par):
+def bounded_free_rocking(y, s, par, limit):
     """Exact sufficient test for free rocking on s after the excitation:
-    (safe, Phi, U).  The total energy E (``total_energy``, zero upright at
-    rest) never grows in free motion: damping, impacts (both maps, capped)
-    and the fold passage of an undamped massless base never add energy,
-    and E is continuous at uplift and at theta = 0.  V >= m(s theta)
-    (``barrier_profile``), so while E < m(phi_c) the rotation can never
-    reach phi_c on either side (the body is symmetric); phi_c is the top
-    of m (bisection of m' on [0, atan(a/c)], where m' goes from g a > 0 to
-    <= 0), cut at theta_over.  Where m is concave on [0, phi_c] (checked),
-    the future |theta| stays <= Phi, m(Phi) = E, and |u| <= k sin Phi +
-    sqrt(2 E)/w_n (V = w^2 (v - k sin phi)^2/2 + m(phi) with m >= 0 there).
-    A damped massless base gains energy at the fold (u' set on the creep):
-    there the test also needs U below the fold u = s B."""
+    (safe, Phi, U), safe only with Phi <= ``limit``.  The total energy E
+    (``total_energy``, zero upright at rest) never grows in free motion:
+    damping, impacts (both maps, capped) and the fold passage of an
+    undamped massless base never add energy, and E is continuous at uplift
+    and at theta = 0.  V >= m(s theta) (``barrier_profile``), so while
+    E < m(phi_c) the rotation can never reach phi_c on either side (the
+    body is symmetric); phi_c is the top of m (bisection of m' on
+    [0, atan(a/c)], where m' goes from g a > 0 to <= 0), cut at
+    theta_over.  Where m is concave on [0, phi_c] (checked), the future
+    |theta| stays <= Phi, m(Phi) = E, and |u| <= k sin Phi + sqrt(2 E)/w_n
+    (V = w^2 (v - k sin phi)^2/2 + m(phi) with m >= 0 there).  A damped
+    massless base gains energy at the fold (u' set on the creep): there
+    the test also needs U below the fold u = s B.  The bisections run only
+    past two cheap rejections by the rigid profile g (a sin + c (cos - 1))
+    >= m: its top g (hypot(a, c) - c), and its Phi, a lower bound."""
     g = par[F_G]
     wn = par[F_WN]
     B = par[F_B]
@@ -442,6 +445,12 @@ def bounded_free_rocking(y, s, par):
     a = B * (1.0 + mb)
     c = par[F_H] + mb * par[F_HB]
     k = g / (wn * wn)
+    E = total_energy(y, s, True, par) - g * c
+    R = math.hypot(a, c)
+    if not E < g * (R - c):
+        return False, 0.0, 0.0
+    if math.atan2(a, c) - math.acos(min(E / g + c, R) / R) > limit:
+        return False, 0.0, 0.0
     lo = 0.0
     hi = math.atan2(a, c)
     for _ in range(60):
@@ -457,7 +466,6 @@ def bounded_free_rocking(y, s, par):
     if not min(c, a * math.sin(phi_c) + c * math.cos(phi_c)) > \
             k * max(0.0, -math.cos(2.0 * phi_c)):
         return False, 0.0, 0.0
-    E = total_energy(y, s, True, par) - g * c
     # relative margin: the pivot-switch map may keep 1e-12 of a gain
     if not E < barrier_profile(phi_c, a, c, k, g)[0] * (1.0 - 1e-9):
         return False, 0.0, 0.0
@@ -469,6 +477,8 @@ def bounded_free_rocking(y, s, par):
             hi = mid
         else:
             lo = mid
+    if not hi <= limit:
+        return False, 0.0, 0.0
     U = k * math.sin(hi) + math.sqrt(2.0 * max(E, 0.0)) / wn
     if base_inertia(par) == 0.0 and par[F_ZETA] > 0.0 and \
             not U < B * (1.0 - FOLD_WIDTH):
@@ -477,7 +487,18 @@ def bounded_free_rocking(y, s, par):
 
 
 @jit
-def rocking_decided(t, y, par, disc, hdr, met, lean_from):
+def rotation_limit(met, side, wall, theta_w):
+    """The largest future peak on ``side`` that leaves its max rotation as
+    it is: the max so far, or any on the side of a wall (w = ``wall``)
+    that has stopped the body there already (theta_w <= the max)."""
+    m = met[M_MAX_THETA_POS] if side > 0 else met[M_MAX_THETA_NEG]
+    if wall == side and theta_w <= m:
+        return np.inf
+    return m
+
+
+@jit
+def rocking_decided(t, y, par, disc, hdr, met, wall, theta_w):
     """Early decision while rocking after the excitation
     (``bounded_free_rocking``), taken only once its bound keeps |theta|
     within the maxima so far on both sides, so that the rotation maxima
@@ -485,18 +506,21 @@ def rocking_decided(t, y, par, disc, hdr, met, lean_from):
     rocking energy in sqrt(2E)/w_n can stay far above the deflections
     that rocking reaches (flexible:2027:214: U = 7.2e-5 m against a
     max |u| of 7.1e-6 m over 3.3 s), so a stiff column would never stop;
-    max |u| then counts up to the decision, as the impacts do.  A wall that the body could lean on
-    (theta_w > alpha, reached within Phi: ``lean_from``) leaves the run
-    undecided."""
+    max |u| then counts up to the decision, as the impacts do.  A wall
+    that the body could lean on (theta_w > alpha) must stay out of the
+    bound's reach (else the full run may end leaning)."""
     if t < excitation_end(hdr):
         return False
-    safe, phi, _U = bounded_free_rocking(y, disc[D_PIVOT], par)
-    return safe and phi < lean_from and \
-        phi <= min(met[M_MAX_THETA_POS], met[M_MAX_THETA_NEG])
+    limit = min(rotation_limit(met, 1, wall, theta_w),
+                rotation_limit(met, -1, wall, theta_w))
+    safe, phi, _U = bounded_free_rocking(y, disc[D_PIVOT], par, limit)
+    return safe and not (theta_w > par[F_ALPHA] and not phi < theta_w)
 
 
 @jit
-def decide_after_step(t, y, par, disc, hdr, opt, met, at_end, lean_from):
+def decide_after_step(t, y, par, disc, hdr, opt, met, at_end, wall, theta_w):
+    """after_step of the flexible body, and of the body with a wall on side
+    ``wall`` at theta_w (no wall: 0, inf)."""
     book_time(t, disc, met)
     track_u(y[0], met)
     if disc[D_MODE] == MODE_ROCK:
@@ -507,14 +531,15 @@ def decide_after_step(t, y, par, disc, hdr, opt, met, at_end, lean_from):
         if disc[D_MODE] == MODE_REST and never_uplifts_again(t, y, par, hdr):
             return final_status(disc, met)
         if disc[D_MODE] == MODE_ROCK and \
-                rocking_decided(t, y, par, disc, hdr, met, lean_from):
+                rocking_decided(t, y, par, disc, hdr, met, wall, theta_w):
             return SAFE_BOUNDED
     return RUNNING
 
 
 @jit
 def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
-    return decide_after_step(t, y, par, disc, hdr, opt, met, at_end, np.inf)
+    return decide_after_step(t, y, par, disc, hdr, opt, met, at_end, 0.0,
+                             np.inf)
 
 
 @jit

@@ -303,11 +303,8 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
             return LEANING
         if mode == MODE_WALL_REST:
             return RUNNING
-    # a wall the body could lean on must stay out of reach of the early
-    # decision in rocking (else the full run may end leaning)
-    lean_from = par[FW_THETA_W] if par[FW_THETA_W] > par[F_ALPHA] else np.inf
     return decide_after_step(t, y, par, disc, hdr, opt, met, at_end,
-                             lean_from)
+                             par[FW_WALL_SIDE], par[FW_THETA_W])
 
 
 @jit

@@ -72,13 +72,17 @@ def test_energy_above_the_barrier_or_past_its_top_is_not_decided():
     b = FlexibleBody(**BODIES["I3-wn9-zeta0.05"])
     par = flexible_par(b)
     # at rest just inside the top: E = V > m(phi) only slightly, phi below the top: safe
-    ok, phi_b, U = K.bounded_free_rocking(np.array([0.0, 0.0, 0.5 * b.alpha, 0.0]), 1, par)
+    ok, phi_b, U = K.bounded_free_rocking(np.array([0.0, 0.0, 0.5 * b.alpha, 0.0]), 1, par, np.inf)
     assert ok and 0.5 * b.alpha <= phi_b < b.alpha and U > 0.0
+    # the same state with a limit on the future peak: decided only if Phi is within it
+    assert K.bounded_free_rocking(np.array([0.0, 0.0, 0.5 * b.alpha, 0.0]), 1, par, phi_b)[0]
+    assert not K.bounded_free_rocking(np.array([0.0, 0.0, 0.5 * b.alpha, 0.0]), 1, par, 0.999 * phi_b)[0]
+    assert not K.bounded_free_rocking(np.array([0.0, 0.0, 0.5 * b.alpha, 0.0]), 1, par, 0.4 * b.alpha)[0]
     # same rotation, fast outward: above the barrier
-    ok, _, _ = K.bounded_free_rocking(np.array([0.0, 0.0, 0.5 * b.alpha, 5.0 * b.p]), 1, par)
+    ok, _, _ = K.bounded_free_rocking(np.array([0.0, 0.0, 0.5 * b.alpha, 5.0 * b.p]), 1, par, np.inf)
     assert not ok
     # past the top of the barrier (phi_c <= alpha for a massless base)
-    ok, _, _ = K.bounded_free_rocking(np.array([0.0, 0.0, -1.01 * b.alpha, 0.0]), -1, par)
+    ok, _, _ = K.bounded_free_rocking(np.array([0.0, 0.0, -1.01 * b.alpha, 0.0]), -1, par, np.inf)
     assert not ok
 
 
