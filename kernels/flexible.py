@@ -429,15 +429,15 @@ def bounded_free_rocking(y, s, par, limit):
     undamped massless base never add energy, and E is continuous at uplift
     and at theta = 0.  V >= m(s theta) (``barrier_profile``), so while
     E < m(phi_c) the rotation can never reach phi_c on either side (the
-    body is symmetric); phi_c is the top of m (bisection of m' on
-    [0, atan(a/c)], where m' goes from g a > 0 to <= 0), cut at
-    theta_over.  Where m is concave on [0, phi_c] (checked), the future
-    |theta| stays <= Phi, m(Phi) = E, and |u| <= k sin Phi + sqrt(2 E)/w_n
-    (V = w^2 (v - k sin phi)^2/2 + m(phi) with m >= 0 there).  A damped
-    massless base gains energy at the fold (u' set on the creep): there
-    the test also needs U below the fold u = s B.  The bisections run only
-    past two cheap rejections by the rigid profile g (a sin + c (cos - 1))
-    >= m: its top g (hypot(a, c) - c), and its Phi, a lower bound."""
+    body is symmetric); phi_c is the top of m (Newton on m' from
+    atan(a/c), where m' <= 0), cut at theta_over.  Where m is concave on
+    [0, phi_c] (checked), the future |theta| stays <= Phi, m(Phi) = E
+    (bisection), and |u| <= k sin Phi + sqrt(2 E)/w_n (V = w^2 (v - k sin
+    phi)^2/2 + m(phi) with m >= 0 there).  A damped massless base gains
+    energy at the fold (u' set on the creep): there the test also needs U
+    below the fold u = s B.  Two cheap rejections by the rigid profile
+    g (a sin + c (cos - 1)) >= m come first: its top g (hypot(a, c) - c),
+    and its Phi, a lower bound of Phi, against ``limit``."""
     g = par[F_G]
     wn = par[F_WN]
     B = par[F_B]
@@ -451,15 +451,22 @@ def bounded_free_rocking(y, s, par, limit):
         return False, 0.0, 0.0
     if math.atan2(a, c) - math.acos(min(E / g + c, R) / R) > limit:
         return False, 0.0, 0.0
-    lo = 0.0
-    hi = math.atan2(a, c)
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        if barrier_profile(mid, a, c, k, g)[1] > 0.0:
-            lo = mid
-        else:
-            hi = mid
-    phi_c = min(lo, par[F_THETA_OVER])
+    # the top of m by Newton from the rigid top (m' <= 0 there), kept in
+    # [0, atan(a/c)]: any phi_c is a valid certificate, the top the best
+    top = math.atan2(a, c)
+    if not s * y[2] < top:
+        return False, 0.0, 0.0
+    phi_c = top
+    for _ in range(8):
+        sp = math.sin(phi_c)
+        cp = math.cos(phi_c)
+        d2 = a * sp + c * cp + k * (cp * cp - sp * sp)
+        prev = phi_c
+        phi_c = min(max(phi_c + (a * cp - c * sp - k * sp * cp) / d2, 0.0),
+                    top)
+        if abs(phi_c - prev) <= 1e-15 * top:
+            break
+    phi_c = min(phi_c, par[F_THETA_OVER])
     if not s * y[2] < phi_c:
         return False, 0.0, 0.0
     # concave on [0, phi_c]: a sin + c cos (concave, least at an end) > -k cos 2 phi
