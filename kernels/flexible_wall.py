@@ -58,7 +58,7 @@ import numpy as np
 from .config import jit, jit_generic, jit_parallel
 from .excitation import excitation_end, ground_rates
 from .flexible import C_UPLIFT, kinetic, positions, track_u, uplift_margin
-from .flexible import after_step as flexible_after_step
+from .flexible import decide_after_step, total_energy
 from .flexible import event as flexible_event
 from .flexible import init_state, static_margin  # no static phase: u vibrates in every mode
 from .flexible import rhs as flexible_rhs
@@ -276,12 +276,7 @@ def trapped_on_wall(y, par, disc):
     hb = par[F_HB]
     sa = math.sin(a)
     ca = math.cos(a)
-    c = math.cos(y[2])
-    sn = math.sin(y[2])
-    _X, Y, _Xb, Yb = positions(y[0] - s * B, c, sn, s, par)
-    rocking = disc[D_MODE] == MODE_ROCK
-    E = kinetic(y, s, rocking, par) + g * (Y + mb * Yb) + \
-        0.5 * wn * wn * y[0] * y[0]
+    E = total_energy(y, s, disc[D_MODE] == MODE_ROCK, par)
     R0 = math.sqrt(B * B + H * H)
     barrier = g * R0 - (g * sa) ** 2 / (2.0 * wn * wn) + \
         mb * g * (B * sa + hb * ca)
@@ -308,7 +303,8 @@ def after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
             return LEANING
         if mode == MODE_WALL_REST:
             return RUNNING
-    return flexible_after_step(t, y, par, disc, hdr, smp, opt, met, at_end)
+    return decide_after_step(t, y, par, disc, hdr, opt, met, at_end,
+                             par[FW_WALL_SIDE], par[FW_THETA_W])
 
 
 @jit
