@@ -507,21 +507,22 @@ def rotation_limit(met, side, wall, theta_w):
 @jit
 def rocking_decided(t, y, par, disc, hdr, met, wall, theta_w):
     """Early decision while rocking after the excitation
-    (``bounded_free_rocking``), taken only once its bound keeps |theta|
-    within the maxima so far on both sides, so that the rotation maxima
-    are the full run's.  The deflection's bound U is not waited for: the
-    rocking energy in sqrt(2E)/w_n can stay far above the deflections
-    that rocking reaches (flexible:2027:214: U = 7.2e-5 m against a
-    max |u| of 7.1e-6 m over 3.3 s), so a stiff column would never stop;
-    max |u| then counts up to the decision, as the impacts do.  A wall
-    that the body could lean on (theta_w > alpha) must stay out of the
-    bound's reach (else the full run may end leaning)."""
+    (``bounded_free_rocking``), taken only once its bounds keep |theta|
+    within the maxima so far on both sides and |u| within the largest
+    deflection so far, so that the rotation and deflection maxima are the
+    full run's.  The deflection's bound U holds the rocking energy in
+    sqrt(2E)/w_n and can stay far above the deflections that rocking
+    reaches (flexible:2027:214: U = 7.2e-5 m against a max |u| of 7.1e-6
+    m over 3.3 s): such a run is not decided.  A wall that the body could
+    lean on (theta_w > alpha) must stay out of the bound's reach (else
+    the full run may end leaning)."""
     if t < excitation_end(hdr):
         return False
     limit = min(rotation_limit(met, 1, wall, theta_w),
                 rotation_limit(met, -1, wall, theta_w))
-    safe, phi, _U = bounded_free_rocking(y, disc[D_PIVOT], par, limit)
-    return safe and not (theta_w > par[F_ALPHA] and not phi < theta_w)
+    safe, phi, U = bounded_free_rocking(y, disc[D_PIVOT], par, limit)
+    return safe and U <= max(met[M_MAX_U], met[M_MIN_U]) and \
+        not (theta_w > par[F_ALPHA] and not phi < theta_w)
 
 
 @jit

@@ -10,9 +10,10 @@ Oracles:
    the potential written from physics.md 3.1 (heights of the mass and the base's centre of mass
    about the pivot, strain w^2 u^2 / 2);
 2. full runs (``early_exit=False``) of the same grids: the same outcome on every cell and the same
-   ``max_rotation`` (the decided rows follow the same step sequence up to the decision, so the
-   maxima are equal to rounding); ``max_deformation`` counts up to the decision (at most the full
-   run's); and the decision does fire.
+   ``max_rotation`` and ``max_deformation`` (the decided rows follow the same step sequence up
+   to the decision, so the maxima are equal to rounding), and the decision does fire.  It waits
+   for the energy's bound on |u| to fall within the largest deflection so far; a soft undamped
+   column (omega_n/p = 3, zeta = 0) never gets there within 5 s, and is not decided.
 """
 from __future__ import annotations
 
@@ -36,6 +37,10 @@ BODIES = {
     "I3-wn100-undamped": dict(alpha=0.15, p=2.5, omega_n_over_p=100.0, zeta=0.0),
     "I3-wn3-soft": dict(alpha=0.25, p=2.0, omega_n_over_p=3.0, zeta=0.0),
 }
+
+# measured: 26, 48, 34, 4 and 0 of 100 (the soft undamped column's |u| bound stays above its
+# deflections so far)
+MIN_DECIDED = {"I3-wn3-soft": 0}
 
 
 def potential(par, s, u, phi):
@@ -102,9 +107,8 @@ def _compare(e, f):
     assert (e.outcome == f.outcome).all(), e.loc[e.outcome != f.outcome, ["amplitude_ratio", "frequency_ratio"]]
     np.testing.assert_allclose(e.max_rotation, f.max_rotation, rtol=1e-12, atol=0.0)
     bounded = e.status == "safe:bounded"
-    # max |u| counts up to the decision (never more than the full run's); the same elsewhere
-    assert (e.max_deformation <= f.max_deformation * (1 + 1e-12)).all()
-    np.testing.assert_allclose(e.max_deformation[~bounded], f.max_deformation[~bounded], rtol=1e-12, atol=0.0)
+    # the decision waits for the bound on |u| too: max |u| is the full run's
+    np.testing.assert_allclose(e.max_deformation, f.max_deformation, rtol=1e-12, atol=0.0)
     assert f.loc[bounded, "status"].str.startswith("safe").all()
     assert (e.nfev <= f.nfev).all()
     return int(bounded.sum())
@@ -118,7 +122,7 @@ def test_early_decision_equals_full_runs(name):
     for e, f in _grids(FlexibleBody(**BODIES[name])):
         decided += _compare(e, f)
     print(f"{name}: {decided} of 100 cells decided in rocking")
-    assert decided >= 1
+    assert decided >= MIN_DECIDED.get(name, 1)
 
 
 @pytest.mark.parametrize("theta_w_over_alpha", [0.6, 1.3])

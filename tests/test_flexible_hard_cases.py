@@ -5,7 +5,6 @@ the outcome of the rigid limit.  CI runs this file a second time under ``NUMBA_B
 """
 from __future__ import annotations
 
-import dataclasses
 
 import numpy as np
 import pytest
@@ -119,46 +118,3 @@ def test_uplift_within_rounding_does_not_loop(case):
         assert tight.metrics["max_rotation_ratio"] == pytest.approx(ref_ratio, rel=1e-6, abs=1e-12)
         # the loose run's max rotation is within its integration error of the tight one
         assert abs(r.metrics["max_rotation_ratio"] - ref_ratio) <= 1e-3 * max(ref_ratio, 1e-3)
-
-
-# Fuzz reproductions (issue #14; bench/README.md "Flexible batches"): undamped stiff columns
-# (omega_n/p = 262 and 200, zeta = 0) that rock for the whole 10 s after the pulse at ~520 000
-# steps per simulated second ended failed:step-budget in the spectrum (early_exit=True).  The
-# rocking early decision (tests/test_flexible_early.py) now ends them safe:bounded after the pulse.
-UNDAMPED_STIFF_CELLS = [
-    ("flexible", 2027, 214, (2.372037957443741, 3.5568813419838534)),
-    ("flexible", 2027, 214, (11.710383276419922, 3.5568813419838534)),
-    ("flexible_wall", 2026, 85, (32.00193454755579, 14.456517250693897)),
-    ("flexible_wall", 2026, 85, (2.480939594843529, 14.456517250693897)),
-]
-
-
-@pytest.mark.parametrize("sign", [1, -1])
-@pytest.mark.parametrize("case", UNDAMPED_STIFF_CELLS, ids=[f"{c[0]}:{c[1]}:{c[2]}-{c[3][0]:.3g}" for c in UNDAMPED_STIFF_CELLS])
-def test_undamped_stiff_rocking_is_decided_early(case, sign):
-    from test_flexible_friction_painleve import _fuzz
-    fz = _fuzz()
-    fam, seed, batch, (a, f) = case
-    run, *_ = fz._simulate_cell(fz.draw_batch(fam, seed, batch), (a, f, sign), early_exit=True)
-    assert run.status == "safe:bounded", run.status
-    assert run.metrics["steps"] + run.metrics["rejected_steps"] < fr.Solver().max_steps
-
-
-@pytest.mark.slow
-def test_undamped_stiff_rocking_decision_equals_the_full_run():
-    """flexible:2027:214, (2.372, 3.557, +1): the full run (early_exit=False, 10 s after the pulse,
-    a budget of 1e7 steps) has the decided run's outcome and max rotation."""
-    from test_flexible_friction_painleve import _fuzz
-    fz = _fuzz()
-    P = fz.draw_batch("flexible", 2027, 214)
-    key = (2.372037957443741, 3.5568813419838534, 1)
-    early, *_ = fz._simulate_cell(P, key, early_exit=True)
-    kw = fz.build_scene(P, 1.0, None)
-    body = kw.pop("body")
-    pul = fr.Pulse(*key, kw.pop("pulse"), amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
-    kw["solver"] = dataclasses.replace(kw["solver"], max_steps=10_000_000)
-    full = fr.simulate(body, pul, early_exit=False, **kw)
-    assert full.outcome == early.outcome == "safe"
-    for k in ("max_rotation_pos", "max_rotation_neg"):
-        assert early.metrics[k] == pytest.approx(full.metrics[k], rel=1e-12, abs=0.0), k
-    assert early.metrics["max_deformation"] <= full.metrics["max_deformation"]
