@@ -9,7 +9,7 @@ from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.model.bodies import RigidBlock
 from fastrock.model.rigid_body import RigidBody
-from fastrock.running.outcomes import checked_stable_step, outcome_of, status_of, warn_unstable
+from fastrock.running.outcomes import checked_stable_step, outcome_of, status_of, warn_budget, warn_unstable
 from fastrock.running.result import SimulationResult, ground_at, events_frame, metrics_dict, run_inputs
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
 from fastrock.running.sweep import call_kernel
@@ -139,6 +139,7 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
                 return r[0], r[5]
             checked = checked_stable_step(rerun, opt, solver.dt, met[L.M_DT_STABLE])
         warn_unstable(code, met, solver.dt, checked=checked)
+    warn_budget(code, met, opt)
     ag, av = ground_at(t, hdr, smp)
     it = spec.state_names.index("theta")
     th = Y[:, it]

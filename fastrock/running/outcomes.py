@@ -117,6 +117,22 @@ def warn_unstable(status, MET, dt, stacklevel=3, checked=None):
                   f"{hint} (or use the adaptive solver)", RuntimeWarning, stacklevel=stacklevel)
 
 
+def warn_budget(code, met, opt, stacklevel=3):
+    """Warn when a run ended as failed:step-budget: it names the budget (``Solver(max_steps=)``,
+    the limit the user set or its default), the time the run reached and the steps the whole run
+    would take at the rate so far."""
+    import warnings
+    if int(code) != L.FAIL_STEP_BUDGET:
+        return
+    taken = met[L.M_NSTEPS] + met[L.M_NREJECT]
+    t0, t_end, t = opt[L.O_T0], opt[L.O_T_END], met[L.M_T_FINAL]
+    need = taken * (t_end - t0) / (t - t0) if t > t0 else float("inf")
+    warnings.warn(f"the run ended as failed:step-budget: its max_steps = {opt[L.O_MAX_STEPS]:.6g} steps "
+                  f"(Solver(max_steps=...), the limit of this run) ran out at t = {t:.6g} s of {t_end:.6g} s; "
+                  f"at the rate so far the whole run needs about {need:.3g} steps. Give a larger max_steps "
+                  f"(up to 1e12), a shorter run, or a looser rtol", RuntimeWarning, stacklevel=stacklevel)
+
+
 def outcome_of(code):
     code = int(code)
     if code in (L.SAFE_NO_UPLIFT, L.SAFE_REST, L.SAFE_MOVING, L.SAFE_BOUNDED):

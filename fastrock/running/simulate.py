@@ -11,7 +11,8 @@ import pandas as pd
 from fastrock import _validate as V
 from fastrock.model import excitation as X
 from fastrock.running import registry
-from fastrock.running.outcomes import MODE_NAMES, checked_stable_step, outcome_of, status_of, warn_unstable
+from fastrock.running.outcomes import (MODE_NAMES, checked_stable_step, outcome_of, status_of, warn_budget,
+                                       warn_unstable)
 from fastrock.model.ground import as_ground
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
 from fastrock.running.sweep import call_kernel
@@ -190,6 +191,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
             te_end = np.array([opt[L.O_T_END]])
             checked = checked_stable_step(lambda o: run(o, 16, te_end)[0:2], opt, solver.dt, met[L.M_DT_STABLE])
         warn_unstable(code, met, solver.dt, checked=checked)
+    warn_budget(code, met, opt)
     if DEBUG:
         metrics["energy_gains"] = int(met[L.M_ENERGY_GAINS])
     if metrics.get("energy_gains", 0) > 0:
