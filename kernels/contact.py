@@ -249,6 +249,8 @@ FLAT_RTOL = 1e-9
 MAX_N = 6
 # D_SLIP_DIR in ROCK: the pivot is held although N < 0 (no consistent mode)
 JAM = 2
+# D_SLIP_DIR in ROCK: the pivot sticks with |F| above mu_s N by rounding
+EDGE = 3
 
 
 # ---------------------------------------------------------------- geometry
@@ -907,6 +909,10 @@ def event(k, t, y, par, disc, hdr, smp):
         if jam:
             # the jam ends when N returns clearly >= 0
             return 1e-9 * par[P_G] - N, 0.0, True
+        if disc[D_SLIP_DIR] == EDGE:
+            # stuck at the cone's edge to rounding: the slip starts once
+            # the demand clears that rounding band
+            return mu * N - abs(F) + 1e-12 * (abs(F) + mu * N), 0.0, True
         return mu * N - abs(F), 0.0, True
     # K_STICK (SLIDE_ROCK)
     sig = disc[D_SLIP_DIR]
@@ -1478,6 +1484,9 @@ def pick_single_ground(j, t, y, par, disc, hdr, smp, met, log, cnt,
     if ok and not forbid_stick and N >= 0.0 and abs(F) <= par[C_MU_S] * N:
         set_single(j, CS_STICK, disc)
         return RUNNING
+    # the cone's edge to rounding: |F| above mu_s N by 1e-12 of it
+    edge = ok and not forbid_stick and N >= 0.0 and \
+        abs(F) - par[C_MU_S] * N <= 1e-12 * (abs(F) + par[C_MU_S] * N)
     sig1 = -1 if F > 0.0 else 1
     if np.isfinite(par[C_MU_K]):
         for sig in (sig1, -sig1):
@@ -1490,6 +1499,16 @@ def pick_single_ground(j, t, y, par, disc, hdr, smp, met, log, cnt,
             # (a_t = 0 up to rounding at the stick / slip boundary)
             if ok2 and Ns >= 0.0 and sig * at >= -1e-12 * (
                     par[P_G] + abs(acc[0]) + abs(acc[1])):
+                if edge and sig * at < 0.0:
+                    # both at the edge to rounding, and the slip would
+                    # stop at once: stick and slip alternated at one
+                    # instant (contact:2027:243, |F| - mu_s N = 1.2e-14 N,
+                    # sigma a_t = -3e-13 m/s^2, failed:transition-loop).
+                    # It sticks, and K_SLIP waits for the demand to clear
+                    # the same band (EDGE)
+                    set_single(j, CS_STICK, disc)
+                    disc[D_SLIP_DIR] = EDGE
+                    return RUNNING
                 set_single(j, st, disc)
                 met[M_N_STICK_SLIP] += 1
                 log_event(log, cnt, t, EV_SLIP, y[1], y[1], y[0], sig)

@@ -142,3 +142,25 @@ def test_contact_2027_437_first_fixed_step_out_of_rest_is_not_divergence():
     assert adaptive.status == "overturn:mode2"
     assert fixed.status == adaptive.status
     assert math.isclose(fixed.metrics["time_overturn"], adaptive.metrics["time_overturn"], rel_tol=1e-3)
+
+
+def test_contact_2027_243_stick_slip_at_the_cone_edge_does_not_loop():
+    """contact:2027:243 (failed:transition-loop, found by the rerun of seed 2027 after the fixes
+    above): a block rocking back from an elastic wall under a 5 g one-sine, its pivot at the
+    friction cone's edge: |F| exceeded mu_s N by 1.2e-14 N while the slip it called for
+    decelerated by 3e-13 m/s^2, and stick and slip alternated at one instant. At the edge to
+    rounding the pivot now sticks until the demand clears that band. Checks: definite status and
+    the mirror image (wall and pulse mirrored) gives the same outcome and max rotation."""
+    body = RigidBlock.rectangle(b=1.1814487080171945, h=7.212154845756745, e=0.2067575844510885)
+    fric = Friction(1.5077281575388577, 1.5077281575388577, slide_tolerance=1e-3, lift_off="flight")
+    solver = Solver(rtol=1.2149850671896902e-10, eps_t=1e-9, eps_omega=1e-9)
+    runs = {}
+    for side, sign in ((1, -1), (-1, 1)):
+        pulse = Pulse(38.00500277459675, 1.2791782216942924, sign, "one-sine", amplitude_unit="g_tan_alpha",
+                      frequency_unit="omega_p/p")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            runs[side] = simulate(body, pulse, wall=Wall(36.77078832511273, side=side, restitution=0.4684168572097468),
+                                  friction=fric, solver=solver, t_after=10.0)
+    assert runs[1].status == runs[-1].status == "overturn:mode1"
+    assert math.isclose(runs[1].metrics["max_rotation"], runs[-1].metrics["max_rotation"], rel_tol=1e-9)
