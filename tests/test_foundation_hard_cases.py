@@ -187,3 +187,30 @@ def test_simulate_takes_early_exit_on_a_foundation():
     full = fr.simulate(body, pulse, foundation=fnd, mass=HARD_109["mass"], solver=solver,
                        t_after=early.metrics["time_end"] - t_end + 0.5)
     assert early.metrics["max_rotation"] == full.metrics["max_rotation"]
+
+
+# foundation:2027:463: a slender block (b/h = 0.012) on stiff, overdamped two-spring corners
+# (omega/p = 75.5, zeta = 0.145, c_v/M ~ 3.7e5 1/s) under a one-cosine of 12.6 g tan(alpha), at the
+# fuzz's loose rtol 8.9e-5 (atol 8.9e-7 does not resolve y_c ~ 1.4e-8 m: the end of a 6e-6 s step
+# put the right corner's force at -15.7 N where it is truly rising).  At t = 7.27e-4 s the corner
+# lifted and re-touched 109 times at one instant at zero force (failed:transition-loop): the
+# re-contact was right (f' > 0 at f = 0), the lift fired at once from the surface.  The zero-force
+# rule (ts_corner_transition) decides such a second switch by the sign of f' and holds the corner
+# 2 eps_f past the surface for the next step.
+HARD_463 = dict(b=0.006422146906547041, h=0.5272291771100616, omega_over_p=75.50645686217604,
+                zeta=0.1445616014621935, mass=23.729341477856025, rtol=8.901284409005013e-05)
+
+
+def test_two_spring_zero_force_retouch_does_not_loop():
+    body, fnd = _scene(HARD_463)
+    amp, freq = 12.550585121720099, 1.2254402344039947
+    kw = dict(pulse="one-cosine", foundation=fnd, mass=HARD_463["mass"], progress=False)
+    df = fr.overturning_spectrum(body, [amp], [freq], "both", solver=fr.Solver(rtol=HARD_463["rtol"]),
+                                 **kw)
+    assert list(df["status"]) == ["overturn:mode2", "overturn:mode2"]
+    assert df["time_overturn"].iloc[0] == df["time_overturn"].iloc[1]      # mirror
+    assert np.isfinite(df[["max_rotation", "time_end", "theta_end", "theta_dot_end"]].to_numpy()).all()
+    # independent check: the tight solver has a single uplift (no re-touch) and the same fall
+    ref = fr.overturning_spectrum(body, [amp], [freq], 1, solver=fr.Solver(rtol=1e-10), **kw)
+    assert ref["status"].iloc[0] == "overturn:mode2"
+    assert df["time_overturn"].iloc[0] == pytest.approx(ref["time_overturn"].iloc[0], rel=1e-6)
