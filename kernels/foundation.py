@@ -69,8 +69,8 @@ from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
 from .hybrid import (EPS, book_time, check_energy, final_status, init_metrics,
                      integrate_hybrid, log_event, sweep_rows)
-from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
-                     EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST, MODE_ROCK,
+from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_CONTACT, EV_FLIGHT,
+                     EV_IMPACT, EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST, MODE_ROCK,
                      M_IMPACTS, M_MAX_THETA_NEG, M_MAX_THETA_POS,
                      M_T_EXC_END, M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_UPLIFT,
                      N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0, RUNNING,
@@ -167,13 +167,14 @@ def mark_uplift(t, theta, dtheta, pivot, met, log, cnt):
 
 
 # ============================================================ (a) two springs
-TS_N_EVENTS = 6
+TS_N_EVENTS = 7
 TS_RIGHT = 0        # corner switch, right
 TS_LEFT = 1         # corner switch, left
 TS_CROSS = 2        # q = 0
 TS_OVERTURN = 3     # |q| = theta_over
 TS_PEAK = 4         # observer: q' = 0 on the current side
 TS_PASS_ALPHA = 5   # observer: |q| = alpha
+TS_REST = 6         # the rest rule held after a step (ts_after_step)
 
 
 @jit
@@ -294,6 +295,9 @@ def ts_event(k, t, y, par, disc, hdr, smp):
             return np.inf, 0.0, False
         _ydd, qdd = ts_accelerations(t, y, par, disc, hdr, smp)
         return sd * y[3], sd * qdd, False
+    if k == TS_REST:
+        # fires at once: the phase ends where the static phase begins
+        return (-1.0 if disc[D_STATIC] == 1 else np.inf), 0.0, True
     sg = 1.0 if y[2] >= 0.0 else -1.0
     return side_alpha(y[2], par) - sg * y[2], -sg * y[3], False
 
@@ -385,6 +389,9 @@ def ts_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return RUNNING
     if k == TS_OVERTURN:
         return overturned(t, y[2], y[3], disc[D_PIVOT], met, log, cnt)
+    if k == TS_REST:
+        ts_set_rest(y, par)
+        return RUNNING
     observe_rotation(k - TS_PEAK, t, y[2], y[3], disc, par, met, log, cnt)
     return RUNNING
 
@@ -405,6 +412,66 @@ def ts_kinetic(y, par):
 
 
 @jit
+def ts_energy_above_rest(y, par):
+    """(dE, kappa) of ts_stays_in_contact [J, N/m]: the energy above the
+    static equilibrium in full contact, and k_v - M g h / b^2."""
+    M = par[P_MASS]
+    g = par[P_G]
+    h = par[P_H]
+    b = par[P_B]
+    k = par[P_KV]
+    half = math.sin(0.5 * y[2])
+    du = -y[0] - 0.5 * M * g / k
+    w = b * math.sin(y[2])
+    dE = (ts_kinetic(y, par) + k * du * du + k * w * w
+          - 2.0 * M * g * h * half * half)
+    return dE, k - M * g * h / (b * b)
+
+
+@jit
+def ts_never_lifts(dE, kappa, par):
+    """The Cauchy-Schwarz test of ts_stays_in_contact: no corner force can
+    reach 0 again with the energy dE above the static equilibrium."""
+    M = par[P_MASS]
+    g = par[P_G]
+    b = par[P_B]
+    h = par[P_H]
+    k = par[P_KV]
+    c = par[P_CV]
+    if not kappa > 0.0:
+        return False
+    m_inv = 1.0 / M + (b * b + h * h) / par[P_I_G]
+    return dE * (k + k * k / kappa + 2.0 * c * c * m_inv) < 0.25 * (M * g) ** 2
+
+
+@jit
+def ts_at_rest(y, par, opt):
+    """Rest rule in full contact (physics.md 7), symmetric block after the
+    excitation, level ground: with dE <= I_G eps_omega^2 / 2 and no lift
+    possible (ts_never_lifts), dE never grows (ts_stays_in_contact), so at
+    every later time I_G q'^2 / 2 <= T <= dE: |q'| <= eps_omega, the rest
+    rule's threshold, |sin q| <= sqrt(dE / kappa) / b and |y_c + delta_eq|
+    <= sqrt(dE / k_v), for good.  The run is at rest, as a rigid block whose
+    chatter the rule stops: the static equilibrium (ts_set_rest).  (A
+    velocity threshold at rounding level would never hold: the explicit
+    step, at its stability limit on the stiff corners, keeps y_c' jittering
+    at about atol, foundation:2027:411.)"""
+    eps_w = opt[O_EPS_OMEGA]
+    dE, kappa = ts_energy_above_rest(y, par)
+    return dE <= 0.5 * par[P_I_G] * eps_w * eps_w and \
+        ts_never_lifts(dE, kappa, par)
+
+
+@jit
+def ts_set_rest(y, par):
+    """The static equilibrium in full contact: y_c = -M g / (2 k_v), at rest."""
+    y[0] = -0.5 * par[P_MASS] * par[P_G] / par[P_KV]
+    y[1] = 0.0
+    y[2] = 0.0
+    y[3] = 0.0
+
+
+@jit
 def ts_stays_in_contact(y, par, met):
     """Exact sufficient test (early decision): a symmetric block in full
     contact after the excitation, on level ground, never lifts a corner again
@@ -420,25 +487,10 @@ def ts_stays_in_contact(y, par, met):
     = -M g / 2, which by Cauchy-Schwarz needs
     dE (k + k^2/kappa + 2 c^2 (1/M + R^2/I_G)) >= (M g / 2)^2; and
     |sin q| <= sqrt(dE / kappa) / b bounds the rotation for good."""
-    M = par[P_MASS]
-    g = par[P_G]
-    h = par[P_H]
-    b = par[P_B]
-    k = par[P_KV]
-    c = par[P_CV]
-    kappa = k - M * g * h / (b * b)
-    if not kappa > 0.0:
+    dE, kappa = ts_energy_above_rest(y, par)
+    if not ts_never_lifts(dE, kappa, par):
         return False
-    sq = math.sin(y[2])
-    half = math.sin(0.5 * y[2])
-    du = -y[0] - 0.5 * M * g / k
-    w = b * sq
-    dE = (ts_kinetic(y, par) + k * du * du + k * w * w
-          - 2.0 * M * g * h * half * half)
-    m_inv = 1.0 / M + (b * b + h * h) / par[P_I_G]
-    if not dE * (k + k * k / kappa + 2.0 * c * c * m_inv) < 0.25 * (M * g) ** 2:
-        return False
-    s_max = math.sqrt(max(dE, 0.0) / kappa) / b
+    s_max = math.sqrt(max(dE, 0.0) / kappa) / par[P_B]
     return s_max < 1.0 and math.asin(s_max) <= min(met[M_MAX_THETA_POS],
                                                   met[M_MAX_THETA_NEG])
 
@@ -484,13 +536,20 @@ def ts_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     book_time(t, disc, met)
     if at_end:
         return final_status(disc, met)
-    if opt[O_EARLY_EXIT] == 0.0 or t < met[M_T_EXC_END] or hdr[S_ON] != 0.0 \
-            or par[P_B_SKEW] != 0.0:
+    if t < met[M_T_EXC_END] or hdr[S_ON] != 0.0 or par[P_B_SKEW] != 0.0:
         return RUNNING
+    early = opt[O_EARLY_EXIT] != 0.0
     if disc[D_MODE] == MODE_REST:
-        if ts_stays_in_contact(y, par, met):
+        if early and ts_stays_in_contact(y, par, met):
             return final_status(disc, met)
-    elif ts_cannot_overturn(y, par, met):
+        if ts_at_rest(y, par, opt):
+            if early:
+                ts_set_rest(y, par)
+                return final_status(disc, met)
+            # TS_REST ends the phase and sets the rest state; the driver's
+            # static phase then goes to t_end (no excitation is left)
+            disc[D_STATIC] = 1
+    elif early and ts_cannot_overturn(y, par, met):
         return SAFE_BOUNDED
     return RUNNING
 

@@ -136,6 +136,44 @@ def test_two_spring_rocking_bounded_after_the_pulse(amp, freq):
     assert E.max() < M * g * math.hypot(b, h)
 
 
+# The same scene's cells below uplift (safe:no-uplift) with early_exit=False (the fuzz's mirror and
+# simulate checks): the free vibration after the pulse decays as exp(-187 t), but the explicit step
+# stays at the corner dashpots' stability limit (~6.5e5 steps per simulated second) while y_c'
+# jitters at about atol, so the 10 s of t_after took more than the 2e6-step budget.  The rest
+# rule in full contact (ts_at_rest: the energy above the static equilibrium below I_G
+# eps_omega^2 / 2, which bounds |theta'| by eps_omega for good) sets the static equilibrium and
+# the run goes to its end in a static phase.
+@pytest.mark.parametrize("freq", [5.173998603224901, 42.5487670090091])
+def test_two_spring_full_contact_comes_to_rest(freq):
+    body, fnd = _scene(HARD_411)
+    amp = 0.9485190754479218
+    pulse = fr.Pulse(amp, freq, 1, "half-sine", amplitude_unit="g_tan_alpha",
+                     frequency_unit="omega_p/p")
+    M = HARD_411["mass"]
+    solver = fr.Solver(rtol=HARD_411["rtol"])
+    run = fr.simulate(body, pulse, foundation=fnd, mass=M, solver=solver, early_exit=False)
+    m = _definite(run)
+    t_exc = pulse.end_time(body)
+    assert run.status == "safe:no-uplift"
+    assert m["time_end"] == pytest.approx(t_exc + 10.0, rel=1e-12)
+    assert m["steps"] < 2e5
+    end = run.history.iloc[-1]
+    assert (end["theta"], end["theta_dot"], end["y_dot"]) == (0.0, 0.0, 0.0)
+    assert end["y"] == -0.5 * M * body.g / fnd.k_v
+    cell = fr.overturning_spectrum(body, [amp], [freq], 1, pulse="half-sine", foundation=fnd,
+                                   mass=M, solver=solver, progress=False).iloc[0]
+    assert cell["status"] == run.status and cell["max_rotation"] == m["max_rotation"]
+    # independent check: without the rule (eps_omega = 0) the integrated decay, 0.25 s past the
+    # pulse, has the same maximum and is within the rule's bounds of the rest state
+    free = fr.simulate(body, pulse, foundation=fnd, mass=M, early_exit=False, t_after=0.25,
+                       solver=fr.Solver(rtol=HARD_411["rtol"], eps_omega=0.0))
+    assert free.status == "safe:no-uplift"
+    assert free.metrics["max_rotation"] == m["max_rotation"]
+    last = free.history.iloc[-1]
+    assert abs(last["theta"]) < 1e-12 and abs(last["theta_dot"]) < 1e-9
+    assert len(free.history) > 1e5
+
+
 # foundation:2027:215: two-spring corners (omega/p = 223, zeta = 0.147, b/h = 0.05) at the fuzz's
 # fixed step dt = 1.08e-5 s, drawn from the vertical and rocking frequencies.  The corner
 # dashpots' overdamped mode (eigenvalue ~ -c_v/m_eff, m_eff the corner's effective mass, up to
