@@ -24,7 +24,9 @@ Three models, each with entry kernels ``<name>_simulate`` (same signature as
     ``delta_s' >= 0``); a released corner that presses again without having
     left the spring's surface is logged as "contact", not as an impact.
     A corner that switches twice between accepted steps at zero force is
-    decided by the sign of f' (zero-force rule, ts_corner_transition).
+    decided by the sign of f' (zero-force rule, ts_corner_transition).  In
+    full contact after the excitation the rest rule (ts_at_rest) sets the
+    static equilibrium once it bounds theta' by eps_omega for good.
     With ``E = T + M g y_G + sum_s k_v max(delta_s, 0)^2 / 2`` the free
     motion satisfies ``dE/dt = -sum c_v delta_s'^2 <= 0`` in contact and
     ``k_v delta_s delta_s' < 0`` for a released corner, so E never grows.
@@ -70,7 +72,8 @@ from .excitation import ground, ground_rates
 from .hybrid import (EPS, book_time, check_energy, final_status, init_metrics,
                      integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_CONTACT, EV_FLIGHT,
-                     EV_IMPACT, EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST, MODE_ROCK,
+                     EV_IMPACT, EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST,
+                     MODE_ROCK,
                      M_IMPACTS, M_MAX_THETA_NEG, M_MAX_THETA_POS,
                      M_T_EXC_END, M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_UPLIFT,
                      N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0, RUNNING,
@@ -266,7 +269,7 @@ def ts_corner_event(side, in_contact, held, t, y, par, disc, hdr, smp):
     # free: stays free while delta < 0 or the spring-dashpot would pull
     d, dd = corner_compression(y, side, par)
     if held == HELD and d > 0.0:
-        # pressed: the force law itself, so that no force over 2 eps_f is missed
+        # pressed: the force law itself (no force over 2 eps_f is missed)
         return off - f, -fdot
     if par[P_CV] * dd >= 0.0:
         return off - par[P_KV] * d, -par[P_KV] * dd
@@ -457,6 +460,8 @@ def ts_at_rest(y, par, opt):
     step, at its stability limit on the stiff corners, keeps y_c' jittering
     at about atol, foundation:2027:411.)"""
     eps_w = opt[O_EPS_OMEGA]
+    if not eps_w > 0.0:
+        return False
     dE, kappa = ts_energy_above_rest(y, par)
     return dE <= 0.5 * par[P_I_G] * eps_w * eps_w and \
         ts_never_lifts(dE, kappa, par)
