@@ -23,6 +23,10 @@ Three models, each with entry kernels ``<name>_simulate`` (same signature as
     a corner that landed from above (``delta_s`` crossing 0 upward with
     ``delta_s' >= 0``); a released corner that presses again without having
     left the spring's surface is logged as "contact", not as an impact.
+    A corner that switches twice between accepted steps at zero force is
+    decided by the sign of f' (zero-force rule, ts_corner_transition).  In
+    full contact after the excitation the rest rule (ts_at_rest) sets the
+    static equilibrium once it bounds theta' by eps_omega for good.
     With ``E = T + M g y_G + sum_s k_v max(delta_s, 0)^2 / 2`` the free
     motion satisfies ``dE/dt = -sum c_v delta_s'^2 <= 0`` in contact and
     ``k_v delta_s delta_s' < 0`` for a released corner, so E never grows.
@@ -65,10 +69,11 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import ground, ground_rates
-from .hybrid import (book_time, check_energy, final_status, init_metrics,
+from .hybrid import (EPS, book_time, check_energy, final_status, init_metrics,
                      integrate_hybrid, log_event, sweep_rows)
-from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
-                     EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST, MODE_ROCK,
+from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_CONTACT, EV_FLIGHT,
+                     EV_IMPACT, EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST,
+                     MODE_ROCK,
                      M_IMPACTS, M_MAX_THETA_NEG, M_MAX_THETA_POS,
                      M_T_EXC_END, M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_UPLIFT,
                      N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0, RUNNING,
@@ -84,6 +89,13 @@ from .layout import (N_PAR_FOUNDATION as N_PAR, P_ALPHA_LEFT,  # noqa: E402,F401
 D_SIDE = 5       # sign of the rotation for the zero-crossing event (0: none yet)
 D_RIGHT = 6      # two_spring: 1 while the right corner is in contact
 D_LEFT = 7       # two_spring: 1 while the left corner is in contact
+# two_spring, per corner (slots of the wall and slip state, which it has not):
+# SWITCHED once it switched since the last accepted step, HELD under the
+# zero-force rule (ts_corner_transition)
+D_HOLD_RIGHT = 3
+D_HOLD_LEFT = 4
+SWITCHED = 1
+HELD = 2
 
 # below this |theta| [rad] a run that starts exactly upright has no side yet
 THETA_SIDE_EPS = 1e-12
@@ -158,13 +170,14 @@ def mark_uplift(t, theta, dtheta, pivot, met, log, cnt):
 
 
 # ============================================================ (a) two springs
-TS_N_EVENTS = 6
+TS_N_EVENTS = 7
 TS_RIGHT = 0        # corner switch, right
 TS_LEFT = 1         # corner switch, left
 TS_CROSS = 2        # q = 0
 TS_OVERTURN = 3     # |q| = theta_over
 TS_PEAK = 4         # observer: q' = 0 on the current side
 TS_PASS_ALPHA = 5   # observer: |q| = alpha
+TS_REST = 6         # the rest rule held after a step (ts_after_step)
 
 
 @jit
@@ -223,32 +236,55 @@ def ts_rhs(t, y, par, disc, hdr, smp, out):
 
 
 @jit
-def ts_corner_event(side, in_contact, t, y, par, disc, hdr, smp):
-    k = par[P_KV]
-    c = par[P_CV]
+def ts_force_rate(side, t, y, par, disc, hdr, smp):
+    """(f, f') of corner ``side``'s force law f = k_v delta + c_v delta' [N,
+    N/s], f' with the accelerations of the contact state in disc."""
     d, dd = corner_compression(y, side, par)
     ydd, qdd = ts_accelerations(t, y, par, disc, hdr, smp)
     x = corner_arm(side, par)
-    sq = math.sin(y[2])
-    cq = math.cos(y[2])
-    ddd = -(ydd - x * (cq * qdd - sq * y[3] * y[3]))
-    f = k * d + c * dd
-    fdot = k * dd + c * ddd
+    ddd = -(ydd - x * (math.cos(y[2]) * qdd - math.sin(y[2]) * y[3] * y[3]))
+    return par[P_KV] * d + par[P_CV] * dd, par[P_KV] * dd + par[P_CV] * ddd
+
+
+@jit
+def ts_force_resolution(t, y, side, fdot, par):
+    """eps_f [N]: what a corner's force law f is known to at a located
+    switch, the rounding of its terms (and of the static load) plus what f
+    moves in two brackets of the root finder (4 eps max(|t|, 1) each)."""
+    d, dd = corner_compression(y, side, par)
+    return 4.0 * EPS * (par[P_MASS] * par[P_G] + abs(par[P_KV] * d)
+                        + abs(par[P_CV] * dd)) \
+        + 8.0 * EPS * max(abs(t), 1.0) * abs(fdot)
+
+
+@jit
+def ts_corner_event(side, in_contact, held, t, y, par, disc, hdr, smp):
+    f, fdot = ts_force_rate(side, t, y, par, disc, hdr, smp)
+    # a held corner switches 2 eps_f past the surface (ts_corner_transition)
+    off = 0.0
+    if held == HELD:
+        off = 2.0 * ts_force_resolution(t, y, side, fdot, par)
     if in_contact != 0:
-        return f, fdot
+        return f + off, fdot
     # free: stays free while delta < 0 or the spring-dashpot would pull
-    if c * dd >= 0.0:
-        return -k * d, -k * dd
-    return -f, -fdot
+    d, dd = corner_compression(y, side, par)
+    if held == HELD and d > 0.0:
+        # pressed: the force law itself (no force over 2 eps_f is missed)
+        return off - f, -fdot
+    if par[P_CV] * dd >= 0.0:
+        return off - par[P_KV] * d, -par[P_KV] * dd
+    return off - f, -fdot
 
 
 @jit
 def ts_event(k, t, y, par, disc, hdr, smp):
     if k == TS_RIGHT:
-        g, gd = ts_corner_event(1.0, disc[D_RIGHT], t, y, par, disc, hdr, smp)
+        g, gd = ts_corner_event(1.0, disc[D_RIGHT], disc[D_HOLD_RIGHT], t, y,
+                                par, disc, hdr, smp)
         return g, gd, True
     if k == TS_LEFT:
-        g, gd = ts_corner_event(-1.0, disc[D_LEFT], t, y, par, disc, hdr, smp)
+        g, gd = ts_corner_event(-1.0, disc[D_LEFT], disc[D_HOLD_LEFT], t, y,
+                                par, disc, hdr, smp)
         return g, gd, True
     if k == TS_CROSS:
         g, gd = cross_event(y[2], y[3], disc)
@@ -262,6 +298,9 @@ def ts_event(k, t, y, par, disc, hdr, smp):
             return np.inf, 0.0, False
         _ydd, qdd = ts_accelerations(t, y, par, disc, hdr, smp)
         return sd * y[3], sd * qdd, False
+    if k == TS_REST:
+        # fires at once: the phase ends where the static phase begins
+        return (-1.0 if disc[D_STATIC] == 1 else np.inf), 0.0, True
     sg = 1.0 if y[2] >= 0.0 else -1.0
     return side_alpha(y[2], par) - sg * y[2], -sg * y[3], False
 
@@ -285,7 +324,40 @@ def ts_set_mode(disc):
 
 
 @jit
-def ts_corner_transition(side, slot, t, y, par, disc, met, log, cnt):
+def ts_corner_transition(side, slot, hold, t, y, par, disc, hdr, smp, met,
+                         log, cnt):
+    """Switch corner ``side``, or keep it under the zero-force rule.
+
+    Zero-force rule: the corner switched already since the last accepted
+    step (a chatter: foundation:2027:463 lifted and re-touched at one
+    instant, forever), it is pressed (delta > 0, so no landing) and its
+    force law is within eps_f of 0.  The force max(f, 0) is continuous
+    there and both contact states share f' at f = 0 (the corner's force
+    does not act at f = 0), so the motion leaves into contact if f' > 0
+    and into the free state if f' < 0: the corner takes that state, f'
+    computed with it free.  It is held so for the next step, its event 2
+    eps_f past the surface: the driver cannot fire it at once again from
+    the surface it leaves (a held free corner that is pressed watches f
+    itself, not k_v delta).  While held, the force applied differs from
+    the model's max(f, 0) by at most 2 eps_f, what the located switch
+    cannot resolve anyway; a held corner that switches does so beyond
+    eps_f, by the ordinary rule, and every hold ends with the next accepted
+    step.  So the rule changes no motion beyond a force error of 2 eps_f."""
+    d, dd = corner_compression(y, side, par)
+    f = par[P_KV] * d + par[P_CV] * dd
+    if disc[hold] != 0 and d > 0.0:
+        was = disc[slot]
+        disc[slot] = 0
+        _f, fdot = ts_force_rate(side, t, y, par, disc, hdr, smp)
+        disc[slot] = was
+        if abs(f) <= ts_force_resolution(t, y, side, fdot, par):
+            disc[hold] = HELD
+            if (fdot > 0.0) == (was != 0):
+                return RUNNING
+        else:
+            disc[hold] = SWITCHED
+    else:
+        disc[hold] = SWITCHED
     if disc[slot] != 0:
         disc[slot] = 0
         ts_set_mode(disc)
@@ -294,7 +366,6 @@ def ts_corner_transition(side, slot, t, y, par, disc, met, log, cnt):
         else:
             mark_uplift(t, y[2], y[3], disc[D_PIVOT], met, log, cnt)
         return RUNNING
-    _d, dd = corner_compression(y, side, par)
     disc[slot] = 1
     ts_set_mode(disc)
     if par[P_CV] * dd >= 0.0:
@@ -311,16 +382,19 @@ def ts_corner_transition(side, slot, t, y, par, disc, met, log, cnt):
 def ts_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     book_time(t, disc, met)
     if k == TS_RIGHT:
-        return ts_corner_transition(1.0, D_RIGHT, t, y, par, disc, met, log,
-                                    cnt)
+        return ts_corner_transition(1.0, D_RIGHT, D_HOLD_RIGHT, t, y, par,
+                                    disc, hdr, smp, met, log, cnt)
     if k == TS_LEFT:
-        return ts_corner_transition(-1.0, D_LEFT, t, y, par, disc, met, log,
-                                    cnt)
+        return ts_corner_transition(-1.0, D_LEFT, D_HOLD_LEFT, t, y, par,
+                                    disc, hdr, smp, met, log, cnt)
     if k == TS_CROSS:
         cross_transition(y, 2, disc, opt)
         return RUNNING
     if k == TS_OVERTURN:
         return overturned(t, y[2], y[3], disc[D_PIVOT], met, log, cnt)
+    if k == TS_REST:
+        ts_set_rest(y, par)
+        return RUNNING
     observe_rotation(k - TS_PEAK, t, y[2], y[3], disc, par, met, log, cnt)
     return RUNNING
 
@@ -341,6 +415,68 @@ def ts_kinetic(y, par):
 
 
 @jit
+def ts_energy_above_rest(y, par):
+    """(dE, kappa) of ts_stays_in_contact [J, N/m]: the energy above the
+    static equilibrium in full contact, and k_v - M g h / b^2."""
+    M = par[P_MASS]
+    g = par[P_G]
+    h = par[P_H]
+    b = par[P_B]
+    k = par[P_KV]
+    half = math.sin(0.5 * y[2])
+    du = -y[0] - 0.5 * M * g / k
+    w = b * math.sin(y[2])
+    dE = (ts_kinetic(y, par) + k * du * du + k * w * w
+          - 2.0 * M * g * h * half * half)
+    return dE, k - M * g * h / (b * b)
+
+
+@jit
+def ts_never_lifts(dE, kappa, par):
+    """The Cauchy-Schwarz test of ts_stays_in_contact: no corner force can
+    reach 0 again with the energy dE above the static equilibrium."""
+    M = par[P_MASS]
+    g = par[P_G]
+    b = par[P_B]
+    h = par[P_H]
+    k = par[P_KV]
+    c = par[P_CV]
+    if not kappa > 0.0:
+        return False
+    m_inv = 1.0 / M + (b * b + h * h) / par[P_I_G]
+    return dE * (k + k * k / kappa + 2.0 * c * c * m_inv) < 0.25 * (M * g) ** 2
+
+
+@jit
+def ts_at_rest(y, par, opt):
+    """Rest rule in full contact (physics.md 7), symmetric block after the
+    excitation, level ground: with dE <= I_G eps_omega^2 / 2 and no lift
+    possible (ts_never_lifts), dE never grows (ts_stays_in_contact), so at
+    every later time I_G q'^2 / 2 <= T <= dE: |q'| <= eps_omega, the rest
+    rule's threshold, |sin q| <= sqrt(dE / kappa) / b and |y_c + delta_eq|
+    <= sqrt(dE / k_v), for good.  The run is at rest, as a rigid block whose
+    chatter the rule stops: the static equilibrium (ts_set_rest).  (A
+    velocity threshold at rounding level would never hold: the explicit
+    step, at its stability limit on the stiff corners, keeps y_c' jittering
+    at about atol, foundation:2027:411.)"""
+    eps_w = opt[O_EPS_OMEGA]
+    if not eps_w > 0.0:
+        return False
+    dE, kappa = ts_energy_above_rest(y, par)
+    return dE <= 0.5 * par[P_I_G] * eps_w * eps_w and \
+        ts_never_lifts(dE, kappa, par)
+
+
+@jit
+def ts_set_rest(y, par):
+    """The static equilibrium in full contact: y_c = -M g / (2 k_v), at rest."""
+    y[0] = -0.5 * par[P_MASS] * par[P_G] / par[P_KV]
+    y[1] = 0.0
+    y[2] = 0.0
+    y[3] = 0.0
+
+
+@jit
 def ts_stays_in_contact(y, par, met):
     """Exact sufficient test (early decision): a symmetric block in full
     contact after the excitation, on level ground, never lifts a corner again
@@ -356,25 +492,10 @@ def ts_stays_in_contact(y, par, met):
     = -M g / 2, which by Cauchy-Schwarz needs
     dE (k + k^2/kappa + 2 c^2 (1/M + R^2/I_G)) >= (M g / 2)^2; and
     |sin q| <= sqrt(dE / kappa) / b bounds the rotation for good."""
-    M = par[P_MASS]
-    g = par[P_G]
-    h = par[P_H]
-    b = par[P_B]
-    k = par[P_KV]
-    c = par[P_CV]
-    kappa = k - M * g * h / (b * b)
-    if not kappa > 0.0:
+    dE, kappa = ts_energy_above_rest(y, par)
+    if not ts_never_lifts(dE, kappa, par):
         return False
-    sq = math.sin(y[2])
-    half = math.sin(0.5 * y[2])
-    du = -y[0] - 0.5 * M * g / k
-    w = b * sq
-    dE = (ts_kinetic(y, par) + k * du * du + k * w * w
-          - 2.0 * M * g * h * half * half)
-    m_inv = 1.0 / M + (b * b + h * h) / par[P_I_G]
-    if not dE * (k + k * k / kappa + 2.0 * c * c * m_inv) < 0.25 * (M * g) ** 2:
-        return False
-    s_max = math.sqrt(max(dE, 0.0) / kappa) / b
+    s_max = math.sqrt(max(dE, 0.0) / kappa) / par[P_B]
     return s_max < 1.0 and math.asin(s_max) <= min(met[M_MAX_THETA_POS],
                                                   met[M_MAX_THETA_NEG])
 
@@ -414,17 +535,26 @@ def ts_cannot_overturn(y, par, met):
 
 @jit
 def ts_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
+    disc[D_HOLD_RIGHT] = 0
+    disc[D_HOLD_LEFT] = 0
     track_rotation(y[2], met)
     book_time(t, disc, met)
     if at_end:
         return final_status(disc, met)
-    if opt[O_EARLY_EXIT] == 0.0 or t < met[M_T_EXC_END] or hdr[S_ON] != 0.0 \
-            or par[P_B_SKEW] != 0.0:
+    if t < met[M_T_EXC_END] or hdr[S_ON] != 0.0 or par[P_B_SKEW] != 0.0:
         return RUNNING
+    early = opt[O_EARLY_EXIT] != 0.0
     if disc[D_MODE] == MODE_REST:
-        if ts_stays_in_contact(y, par, met):
+        if early and ts_stays_in_contact(y, par, met):
             return final_status(disc, met)
-    elif ts_cannot_overturn(y, par, met):
+        if ts_at_rest(y, par, opt):
+            if early:
+                ts_set_rest(y, par)
+                return final_status(disc, met)
+            # TS_REST ends the phase and sets the rest state; the driver's
+            # static phase then goes to t_end (no excitation is left)
+            disc[D_STATIC] = 1
+    elif early and ts_cannot_overturn(y, par, met):
         return SAFE_BOUNDED
     return RUNNING
 

@@ -136,6 +136,44 @@ def test_two_spring_rocking_bounded_after_the_pulse(amp, freq):
     assert E.max() < M * g * math.hypot(b, h)
 
 
+# The same scene's cells below uplift (safe:no-uplift) with early_exit=False (the fuzz's mirror and
+# simulate checks): the free vibration after the pulse decays as exp(-187 t), but the explicit step
+# stays at the corner dashpots' stability limit (~6.5e5 steps per simulated second) while y_c'
+# jitters at about atol, so the 10 s of t_after took more than the 2e6-step budget.  The rest
+# rule in full contact (ts_at_rest: the energy above the static equilibrium below I_G
+# eps_omega^2 / 2, which bounds |theta'| by eps_omega for good) sets the static equilibrium and
+# the run goes to its end in a static phase.
+@pytest.mark.parametrize("freq", [5.173998603224901, 42.5487670090091])
+def test_two_spring_full_contact_comes_to_rest(freq):
+    body, fnd = _scene(HARD_411)
+    amp = 0.9485190754479218
+    pulse = fr.Pulse(amp, freq, 1, "half-sine", amplitude_unit="g_tan_alpha",
+                     frequency_unit="omega_p/p")
+    M = HARD_411["mass"]
+    solver = fr.Solver(rtol=HARD_411["rtol"])
+    run = fr.simulate(body, pulse, foundation=fnd, mass=M, solver=solver, early_exit=False)
+    m = _definite(run)
+    t_exc = pulse.end_time(body)
+    assert run.status == "safe:no-uplift"
+    assert m["time_end"] == pytest.approx(t_exc + 10.0, rel=1e-12)
+    assert m["steps"] < 2e5
+    end = run.history.iloc[-1]
+    assert (end["theta"], end["theta_dot"], end["y_dot"]) == (0.0, 0.0, 0.0)
+    assert end["y"] == -0.5 * M * body.g / fnd.k_v
+    cell = fr.overturning_spectrum(body, [amp], [freq], 1, pulse="half-sine", foundation=fnd,
+                                   mass=M, solver=solver, progress=False).iloc[0]
+    assert cell["status"] == run.status and cell["max_rotation"] == m["max_rotation"]
+    # independent check: without the rule (eps_omega = 0) the integrated decay, 0.25 s past the
+    # pulse, has the same maximum and is within the rule's bounds of the rest state
+    free = fr.simulate(body, pulse, foundation=fnd, mass=M, early_exit=False, t_after=0.25,
+                       solver=fr.Solver(rtol=HARD_411["rtol"], eps_omega=0.0))
+    assert free.status == "safe:no-uplift"
+    assert free.metrics["max_rotation"] == m["max_rotation"]
+    last = free.history.iloc[-1]
+    assert abs(last["theta"]) < 1e-12 and abs(last["theta_dot"]) < 1e-9
+    assert len(free.history) > 1e5
+
+
 # foundation:2027:215: two-spring corners (omega/p = 223, zeta = 0.147, b/h = 0.05) at the fuzz's
 # fixed step dt = 1.08e-5 s, drawn from the vertical and rocking frequencies.  The corner
 # dashpots' overdamped mode (eigenvalue ~ -c_v/m_eff, m_eff the corner's effective mass, up to
@@ -187,3 +225,30 @@ def test_simulate_takes_early_exit_on_a_foundation():
     full = fr.simulate(body, pulse, foundation=fnd, mass=HARD_109["mass"], solver=solver,
                        t_after=early.metrics["time_end"] - t_end + 0.5)
     assert early.metrics["max_rotation"] == full.metrics["max_rotation"]
+
+
+# foundation:2027:463: a slender block (b/h = 0.012) on stiff, overdamped two-spring corners
+# (omega/p = 75.5, zeta = 0.145, c_v/M ~ 3.7e5 1/s) under a one-cosine of 12.6 g tan(alpha), at the
+# fuzz's loose rtol 8.9e-5 (atol 8.9e-7 does not resolve y_c ~ 1.4e-8 m: the end of a 6e-6 s step
+# put the right corner's force at -15.7 N where it is truly rising).  At t = 7.27e-4 s the corner
+# lifted and re-touched 109 times at one instant at zero force (failed:transition-loop): the
+# re-contact was right (f' > 0 at f = 0), the lift fired at once from the surface.  The zero-force
+# rule (ts_corner_transition) decides such a second switch by the sign of f' and holds the corner
+# 2 eps_f past the surface for the next step.
+HARD_463 = dict(b=0.006422146906547041, h=0.5272291771100616, omega_over_p=75.50645686217604,
+                zeta=0.1445616014621935, mass=23.729341477856025, rtol=8.901284409005013e-05)
+
+
+def test_two_spring_zero_force_retouch_does_not_loop():
+    body, fnd = _scene(HARD_463)
+    amp, freq = 12.550585121720099, 1.2254402344039947
+    kw = dict(pulse="one-cosine", foundation=fnd, mass=HARD_463["mass"], progress=False)
+    df = fr.overturning_spectrum(body, [amp], [freq], "both", solver=fr.Solver(rtol=HARD_463["rtol"]),
+                                 **kw)
+    assert list(df["status"]) == ["overturn:mode2", "overturn:mode2"]
+    assert df["time_overturn"].iloc[0] == df["time_overturn"].iloc[1]      # mirror
+    assert np.isfinite(df[["max_rotation", "time_end", "theta_end", "theta_dot_end"]].to_numpy()).all()
+    # independent check: the tight solver has a single uplift (no re-touch) and the same fall
+    ref = fr.overturning_spectrum(body, [amp], [freq], 1, solver=fr.Solver(rtol=1e-10), **kw)
+    assert ref["status"].iloc[0] == "overturn:mode2"
+    assert df["time_overturn"].iloc[0] == pytest.approx(ref["time_overturn"].iloc[0], rel=1e-6)
