@@ -37,6 +37,7 @@ from fastrock.running.models import contact_par
 
 sys.path.insert(0, os.path.dirname(__file__))
 from test_contact_core import run  # noqa: E402
+from test_contact_gap0 import _same  # noqa: E402
 from test_contact_small_gap import ENERGY_TOL  # noqa: E402
 
 BLOCK = RigidBlock.rectangle(0.2, 0.8)              # face 1.6 m
@@ -47,16 +48,6 @@ PULSES = ((0.3, 1.0), (0.5, 2.0), (1.0, 3.0), (3.0, 5.0))
 ASYM = RigidBody(mass=1.0, inertia=0.12, b1=0.15, h1=0.8, b2=0.3, h2=0.8,
                  outline=[(-0.15, -0.8), (0.3, -0.8), (0.3, 0.9), (-0.15, 0.9)])
 TOL_GEOM = 1e-9
-
-
-def _same(a, b, key):
-    assert a.kernel in ("contact", "contact_body") and b.kernel in ("rigid_wall", "wall_body"), key
-    assert a.metrics["flights"] == 0, key
-    assert a.status == b.status, key
-    # to the tolerance of the other contact-vs-wall-model tests (tests/test_contact_gap0.py)
-    assert a.metrics["max_rotation"] == pytest.approx(b.metrics["max_rotation"], rel=1e-6), key
-    assert a.metrics["wall_impacts"] == b.metrics["wall_impacts"], key
-    assert a.metrics["impacts"] == b.metrics["impacts"], key
 
 
 @pytest.mark.parametrize("geo", [LOW, HIGH], ids=["edge-below-cm", "edge-above-cm"])
