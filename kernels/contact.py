@@ -1039,19 +1039,14 @@ def face_rest_margin(t, par, hdr, smp):
     wall forces W_base, W_top >= 0 at the base and top of the face: with
     q >= 0 the choice W_top = max(0, (q h - G b + 2 b N_far) / (2h)),
     W_base = q - W_top, F = 0 is admissible; with q < 0 the wall force is
-    0 and the conditions are the free rest's.  A short wall whose edge is
-    below the CM (h_w < h) holds the push only while the block does not
-    tip over the edge (about E, both base corners lifting, the base pushed
-    away from the wall): the same balance with W_top at h_w and the ground
-    friction at its limit gives q (h - h_w) <= G (b_w + mu_s h_w)."""
+    0 and the conditions are the free rest's.  Beside a wall lower than
+    the CM the same balance with the upper wall force at the edge E would
+    let a push q (h - h_w) > G (b_w + mu_s h_w) turn the block over E
+    (the near corner slipping away); that motion is not modelled: the
+    rest holds (a limit of the short wall)."""
     ag, av = ground(t, hdr, smp)
     G = par[P_G] + av
     q = -par[P_WALL_SIDE] * ag
-    h = hmid(par)
-    hw = par[C_H_WALL]
-    if short_wall(par) and hw < h and np.isfinite(par[C_MU_S]):
-        bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
-        q = min(q, G * (bw + par[C_MU_S] * hw) - q * (h - hw))
     return min(G, max(q, rest_margin(t, par, hdr, smp)))
 
 
@@ -1285,19 +1280,6 @@ def pick_flat(t, y, par, disc, hdr, smp, met, log, cnt):
         set_contacts(disc, CS_STICK, CS_STICK, CS_WALL_BASE)
         disc[D_WALL_REST] = 1
         return RUNNING
-    if at_wall and short_wall(par) and -w * ag > 0.0:
-        # pushed over a short wall's edge (``face_rest_margin``): the base
-        # lifts off, the face turning on E
-        y[2] = w * par[C_GAP]
-        s = disc[D_PIVOT]
-        d0 = disc.copy()
-        pick_wall_flight(2, t, y, par, disc, hdr, smp, 0)
-        if disc[D_CS2] != CS_OPEN:
-            met[M_N_FLIGHTS] += 1
-            mark_uplift(t, met)
-            log_event(log, cnt, t, EV_FLIGHT, 0.0, 0.0, 0.0, s)
-            return RUNNING
-        disc[:] = d0
     if rest_margin(t, par, hdr, smp) >= 0.0:
         set_contacts(disc, CS_STICK, CS_STICK, CS_OPEN)
         return RUNNING
