@@ -12,7 +12,11 @@ to the centre of mass (CM):
     0  left base corner   (-b1, -h1)
     1  right base corner  ( b2, -h2)
     2  wall corner: the top corner on the wall side w, (w b_w, ht_w), with
-       b_w = b2 (w = +1) or b1 (w = -1), ht_w = par[C_HT2] or par[C_HT1]
+       b_w = b2 (w = +1) or b1 (w = -1), ht_w = par[C_HT2] or par[C_HT1];
+       beside a wall lower than it (par[C_H_WALL] > 0), the body's point
+       nearest the wall's top edge E, a fixed point: on the wall-side face
+       (E against the face, whose normal turns with the body), the top face
+       or the top corner (``wall_geom``), so it moves over the body
 
 Body-frame (a, c) maps to world (a cos th + c sin th, -a sin th + c cos th)
 (physics.md 0).  Gravity is the vector (0, -G), G = g + a_v, written in one
@@ -139,6 +143,8 @@ Parameters (``par``, N_PAR entries)
  20  C_HT2 m, height of the top-right corner above the CM
  21  C_E_NEG     restitution of a ground impact from pivot -1 onto +1
  22  C_ALPHA_NEG rad, alpha of the left pivot
+ 23  C_H_WALL    m, height of a wall lower than the wall-side top corner
+                 (0: a tall wall)
 A friction parameter vector (kernels/friction.py) extended to N_PAR with
 C_B2 = Q_B, C_H2 = Q_H, C_E_NEG = P_E, C_ALPHA_NEG = P_ALPHA is a valid
 contact parameter vector.
@@ -189,6 +195,16 @@ from .layout import (C_ALPHA_NEG, C_B1, C_B2, C_E_NEG, C_GAP, C_H1,  # noqa: E40
                      M_T_FLIGHT, N_PAR_CONTACT as N_PAR)
 N_STATE = 6
 assert M_MAX_JUMP < N_MET
+# m, the height above the ground of a wall lower than the body's wall-side
+# top corner (a short wall: its top edge E is a contact feature); 0: a tall
+# wall.  A slot N_PAR_CONTACT leaves free: to be named in kernels/layout.py
+C_H_WALL = 23
+assert C_H_WALL < N_PAR
+# the feature of a short wall's contact (``wall_geom``)
+WG_CORNER = 0     # the top corner against the wall's face (below E)
+WG_EDGE = 1       # E against the body's wall-side face
+WG_VERTEX = 2     # the top corner against E itself (the body above E)
+WG_TOP = 3        # E against the body's top face (the body over the wall)
 
 # ---- discrete state: one contact state per contact point -------------------
 D_CS0 = 5
@@ -309,27 +325,124 @@ def point_offset(k, theta, par):
 
 
 @jit
+def short_wall(par):
+    """The wall is lower than the body's wall-side top corner."""
+    return par[C_H_WALL] > 0.0
+
+
+@jit
+def wall_geom(y, par):
+    """The wall contact (k = 2) in state y: (gap, rx, ry, nx, ny, tx, ty,
+    kind), r the world vector from the CM to the body's contact point, n
+    the contact normal (toward the body), t = (w n_y, -w n_x) its tangent.
+    A tall wall: the top corner against the wall's face, n = (-w, 0).  A
+    short wall (height h_w = par[C_H_WALL]), top edge E = (w (b_w + d),
+    h_w), against the body's nearest feature, by E's place in the body
+    frame: while E projects onto the wall-side face, the face (WG_EDGE: its
+    point at E's projection, n its inward normal, which turns with the
+    body; the gap is E's signed distance to the face line); past the top
+    corner, the top face (WG_TOP: the body over the wall), or the top
+    corner against the wall's face below E (WG_CORNER) or against E itself
+    (WG_VERTEX, gap their distance).  Inside the body the nearer of the
+    face and the top: the gap is E's signed distance to the body near
+    them, continuous, so a crossing, or a pass through the body inside one
+    flight step (a minimum), is located."""
+    th = y[0]
+    w = par[P_WALL_SIDE]
+    bw = par[C_B2] if w > 0.0 else par[C_B1]
+    rx, ry = point_offset(2, th, par)
+    hm = hmid(par)
+    gx = y[2] + hm * math.sin(th)
+    if not short_wall(par):
+        return bw + par[C_GAP] - w * (gx + rx), rx, ry, -w, 0.0, 0.0, 1.0, \
+            WG_CORNER
+    gy = y[4] + hm * math.cos(th)
+    ex = w * (bw + par[C_GAP]) - gx
+    ey = par[C_H_WALL] - gy
+    c = math.cos(th)
+    sn = math.sin(th)
+    # E's coordinate along the face (body frame, up from the CM)
+    cE = sn * ex + c * ey
+    ht = par[C_HT2] if w > 0.0 else par[C_HT1]
+    # E's coordinate across the face, toward the wall side
+    u = w * (c * ex - sn * ey)
+    if cE <= ht and u - bw >= cE - ht:
+        # face point Q = b_w n_f + cE t_f, n_f = (w c, -w sn), t_f = (sn, c)
+        qx = w * bw * c + cE * sn
+        qy = -w * bw * sn + cE * c
+        return u - bw, qx, qy, -w * c, w * sn, sn, c, WG_EDGE
+    if u <= bw:
+        # above the top face (the body over the wall), or inside the body
+        # nearer the top than the face: E against the top face
+        qx = u * w * c + ht * sn
+        qy = -u * w * sn + ht * c
+        return cE - ht, qx, qy, -sn, -c, -w * c, w * sn, WG_TOP
+    if gy + ry <= par[C_H_WALL]:
+        return bw + par[C_GAP] - w * (gx + rx), rx, ry, -w, 0.0, 0.0, 1.0, \
+            WG_CORNER
+    dx = rx - ex
+    dy = ry - ey
+    dist = math.hypot(dx, dy)
+    nx = dx / dist
+    ny = dy / dist
+    return dist, rx, ry, nx, ny, w * ny, -w * nx, WG_VERTEX
+
+
+@jit
+def geom(k, y, par):
+    """(rx, ry, nx, ny, tx, ty) of contact point k in state y."""
+    if k == 2:
+        _g, rx, ry, nx, ny, tx, ty, _kind = wall_geom(y, par)
+        return rx, ry, nx, ny, tx, ty
+    rx, ry = point_offset(k, y[0], par)
+    nx, ny, tx, ty = frame(k, par)
+    return rx, ry, nx, ny, tx, ty
+
+
+@jit
 def point_kin(k, y, par):
     """(gap, normal velocity, tangential velocity) of contact point k; the
     gap is the height above the ground (k < 2) or the clear distance to the
-    wall (k = 2: top corner, k = K_NEAR: wall-side base corner)."""
+    wall (k = 2: the wall contact of ``wall_geom``, k = K_NEAR: the
+    wall-side base corner)."""
     th = y[0]
     om = y[1]
     hm = hmid(par)
-    rx, ry = point_offset(k, th, par)
+    if k == 2:
+        gap, rx, ry, nx, ny, tx, ty, _kind = wall_geom(y, par)
+    else:
+        rx, ry = point_offset(k, th, par)
+        nx, ny, tx, ty = frame(k, par)
     gx = y[2] + hm * math.sin(th)
     gy = y[4] + hm * math.cos(th)
     vgx, vgy = cm_velocity(y, par)
     vx = vgx + om * ry
     vy = vgy - om * rx
-    nx, ny, tx, ty = frame(k, par)
     if k < 2:
         gap = gy + ry
-    else:
+    elif k == K_NEAR:
         w = par[P_WALL_SIDE]
         bw = par[C_B2] if w > 0.0 else par[C_B1]
         gap = bw + par[C_GAP] - w * (gx + rx)
     return gap, nx * vx + ny * vy, tx * vx + ty * vy
+
+
+@jit
+def wall_normal_rate(y, par):
+    """The normal acceleration of the wall contact's gap beyond that of
+    its body point (the velocity-product term of the mode solve's wall
+    row): 2 n'.v, n' = theta' (n_y, -n_x) for a normal fixed in the body
+    (E on the face or on the top), 0 for the corner on the wall's face;
+    for the corner on E (|v_t|^2 / gap, infinite at contact) 0: that
+    contact is an impact only."""
+    if not short_wall(par):
+        return 0.0
+    _g, rx, ry, nx, ny, _tx, _ty, kind = wall_geom(y, par)
+    if kind != WG_EDGE and kind != WG_TOP:
+        return 0.0
+    vgx, vgy = cm_velocity(y, par)
+    om = y[1]
+    return 2.0 * om * (ny * (vgx + om * ry) - nx * (vgy - om * rx))
 
 
 @jit
@@ -422,14 +535,14 @@ def contact_mu(k, par, kinetic):
 
 
 @jit
-def solve_contacts(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, out):
+def solve_contacts(y, b0x, b0y, b0w, om2, par, st0, st1, st2, out):
     """``solve_targets`` with every target 0."""
-    return solve_targets(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, 0.0,
+    return solve_targets(y, b0x, b0y, b0w, om2, par, st0, st1, st2, 0.0,
                          out)
 
 
 @jit
-def solve_targets(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
+def solve_targets(y, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
     """The generic mode solve of physics.md 4.2 (and its impulse form).
 
     Contact k is in state st_k (CS_*).  With ``b0`` the generalized
@@ -442,14 +555,17 @@ def solve_targets(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
     N2, F2); ok is False for a singular system (e.g. both base corners
     sticking: REST is a static phase, never solved here).  ``tgt2`` is the
     target of the wall contact's normal row (impulse form: the post-impact
-    normal velocity -e_w v_n-).  The wall contact is the top corner
-    (st2 = CS_FREE, CS_TOP_*) or the wall-side base corner (st2 =
+    normal velocity -e_w v_n-; acceleration form: ``wall_normal_rate``'s
+    term, for a short wall).  The geometry is that of the state y (theta =
+    y[0]; a short wall's contact also moves with the position).  The wall
+    contact is the top corner or a short wall's edge (st2 = CS_FREE,
+    CS_TOP_*: ``wall_geom``) or the wall-side base corner (st2 =
     CS_WALL_BASE, CS_BASE_*); slipping on a frictional wall its friction is
-    -mu_w sigma_w N_w along (0, 1), sticking it adds a tangential row.
+    -mu_w sigma_w N_w along its tangent, sticking it adds a tangential row.
     """
     iG = par[C_IG]
-    c = math.cos(theta)
-    sn = math.sin(theta)
+    c = math.cos(y[0])
+    sn = math.sin(y[0])
     # ws[i]: 0-2 constraint row J, 3-5 force column, 6-11 matrix row,
     # 12 right-hand side, 13 owner contact, 14 kind (0 N, 1 F), 15 -mu sigma
     ws = np.zeros((MAX_N, 16))
@@ -459,10 +575,13 @@ def solve_targets(theta, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
         if st == CS_OPEN:
             continue
         kk = K_NEAR if (k == 2 and wall_base(st)) else k
-        cx, cy = body_point(kk, par)
-        rx = cx * c + cy * sn
-        ry = -cx * sn + cy * c
-        nx, ny, tx, ty = frame(kk, par)
+        if kk == 2:
+            _g, rx, ry, nx, ny, tx, ty, _kind = wall_geom(y, par)
+        else:
+            cx, cy = body_point(kk, par)
+            rx = cx * c + cy * sn
+            ry = -cx * sn + cy * c
+            nx, ny, tx, ty = frame(kk, par)
         jn2 = ry * nx - rx * ny
         jt2 = ry * tx - rx * ty
         m = 0.0
@@ -577,20 +696,26 @@ def mode_solve(t, y, par, st0, st1, st2, hdr, smp, acc):
     """Accelerations (x_G'', y_G'', theta'') and contact forces at time t
     for the contact states st_k (physics.md 4.2)."""
     bx, by, bw = free_acc(t, par, hdr, smp)
-    return solve_contacts(y[0], bx, by, bw, y[1] * y[1], par, st0, st1, st2,
-                          acc)
+    tgt2 = 0.0
+    if wall_top(st2):
+        tgt2 = -wall_normal_rate(y, par)
+    return solve_targets(y, bx, by, bw, y[1] * y[1], par, st0, st1, st2,
+                         tgt2, acc)
 
 
 @jit
 def contact_acc(k, y, par, acc):
     """(normal, tangential) acceleration of contact point k for the
-    generalized acceleration acc."""
-    rx, ry = point_offset(k, y[0], par)
-    nx, ny, tx, ty = frame(k, par)
+    generalized acceleration acc (of its gap and slip for the wall
+    contact: ``wall_normal_rate`` added)."""
+    rx, ry, nx, ny, tx, ty = geom(k, y, par)
     om2 = y[1] * y[1]
     ax = acc[0] + acc[2] * ry - om2 * rx
     ay = acc[1] - acc[2] * rx - om2 * ry
-    return nx * ax + ny * ay, tx * ax + ty * ay
+    an = nx * ax + ny * ay
+    if k == 2:
+        an += wall_normal_rate(y, par)
+    return an, tx * ax + ty * ay
 
 
 @jit
@@ -813,6 +938,15 @@ def event(k, t, y, par, disc, hdr, smp):
             # speed changed nothing and flew again at once (zero-time loop)
             if vn < -1e-12 * velocity_scale(y, par):
                 return gap, vn, True
+            band = FACE_RTOL * (par[C_B1] + par[C_B2])
+            if k == K_WALL and (gap < -band or
+                                (short_wall(par) and gap > band)):
+                # moving away: inside the wall beyond the contact band
+                # (crossed and turned back inside the step), located; and
+                # clear of a short wall's edge, kept for the grazing search
+                # (a flight step is long: E can pass through the body's
+                # corner region inside one)
+                return gap, vn, True
             return np.inf, 0.0, True
         if k == K_APEX:
             _ag, av = ground(t, hdr, smp)
@@ -951,7 +1085,11 @@ def face_rest_margin(t, par, hdr, smp):
     wall forces W_base, W_top >= 0 at the base and top of the face: with
     q >= 0 the choice W_top = max(0, (q h - G b + 2 b N_far) / (2h)),
     W_base = q - W_top, F = 0 is admissible; with q < 0 the wall force is
-    0 and the conditions are the free rest's."""
+    0 and the conditions are the free rest's.  Beside a wall lower than
+    the CM the same balance with the upper wall force at the edge E would
+    let a push q (h - h_w) > G (b_w + mu_s h_w) turn the block over E
+    (the near corner slipping away); that motion is not modelled: the
+    rest holds (a limit of the short wall)."""
     ag, av = ground(t, hdr, smp)
     G = par[P_G] + av
     q = -par[P_WALL_SIDE] * ag
@@ -1117,10 +1255,10 @@ def stop_slip_impulsively(j, y, par):
     vgx, vgy = cm_velocity(y, par)
     post = np.empty(3)
     if j == 2:
-        solve_contacts(y[0], vgx, vgy, y[1], 0.0, par, CS_STICK, CS_FREE,
+        solve_contacts(y, vgx, vgy, y[1], 0.0, par, CS_STICK, CS_FREE,
                        CS_OPEN, post)
     else:
-        solve_contacts(y[0], vgx, vgy, y[1], 0.0, par,
+        solve_contacts(y, vgx, vgy, y[1], 0.0, par,
                        CS_STICK if j == 0 else CS_OPEN,
                        CS_STICK if j == 1 else CS_OPEN, CS_OPEN, post)
     set_cm_velocity(y, par, post[0], post[1], post[2])
@@ -1391,7 +1529,7 @@ def pick_wall_corner(j, t, y, par, disc, hdr, smp, met, log, cnt,
     if fr_w:
         # frictional wall: wedged while some admissible wall friction holds
         bx, by, bw = free_acc(t, par, hdr, smp)
-        okl, m, _P, _N, F, _Nw = wall_stick_lp(y[0], bx, by, bw,
+        okl, m, _P, _N, F, _Nw = wall_stick_lp(y, bx, by, bw,
                                                y[1] * y[1], par, j, K_NEAR,
                                                0.0, acc)
         wedged = okl and m >= 0.0
@@ -1740,7 +1878,7 @@ def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     st0 = CS_STICK if j == 0 else CS_OPEN
     st1 = CS_STICK if j == 1 else CS_OPEN
     ok, N0, F0, N1, F1, _N2, _F2 = solve_contacts(
-        y[0], vgx, vgy, om, 0.0, par, st0, st1, CS_OPEN, post)
+        y, vgx, vgy, om, 0.0, par, st0, st1, CS_OPEN, post)
     Ln = N1 if j == 1 else N0
     Lt = F1 if j == 1 else F0
     if not (ok and Ln >= 0.0 and (abs(Lt) <= par[C_MU_S] * Ln
@@ -1780,7 +1918,7 @@ def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     if flat:
         _g, _vn, vt = point_kin(0, y, par)
         ok, N0, F0, N1, F1, _N2, _F2 = solve_contacts(
-            y[0], vgx, vgy, om, 0.0, par, CS_STICK, CS_FREE, CS_OPEN, post)
+            y, vgx, vgy, om, 0.0, par, CS_STICK, CS_FREE, CS_OPEN, post)
         if not (ok and N0 >= 0.0 and N1 >= 0.0 and
                 (abs(F0) <= par[C_MU_S] * (N0 + N1)
                  or not np.isfinite(par[C_MU_S]))):
@@ -1788,7 +1926,7 @@ def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             st = slip_state(sig)
             stick_post = post.copy()
             ok2, N0, F0, N1, F1, _N2, _F2 = solve_contacts(
-                y[0], vgx, vgy, om, 0.0, par, st, st, CS_OPEN, post)
+                y, vgx, vgy, om, 0.0, par, st, st, CS_OPEN, post)
             tmp2 = y.copy()
             set_cm_velocity(tmp2, par, post[0], post[1], post[2])
             _g, _vn, vt2 = point_kin(0, tmp2, par)
@@ -1828,13 +1966,13 @@ def wall_rest_margin(t, y, par, disc, hdr, smp):
         # a frictional wall: its tangential force is indeterminate, the
         # rest holds while some admissible one exists (``wall_stick_lp``)
         kw = K_NEAR if st2 == CS_WALL_BASE else 2
-        ok, m, _P, _N, _F, _Nw = wall_stick_lp(y[0], bx, by, bw, 0.0, par, j,
+        ok, m, _P, _N, _F, _Nw = wall_stick_lp(y, bx, by, bw, 0.0, par, j,
                                                kw, 0.0, acc)
         if not ok:
             return -1.0
         return m
     ok, N0, F0, N1, F1, N2, _F2 = solve_contacts(
-        y[0], bx, by, bw, 0.0, par, st0, st1, st2, acc)
+        y, bx, by, bw, 0.0, par, st0, st1, st2, acc)
     N = N1 if j == 1 else N0
     F = F1 if j == 1 else F0
     m = min(N2, N)
@@ -1847,7 +1985,7 @@ def wall_rest_margin(t, y, par, disc, hdr, smp):
 
 
 @jit
-def wall_stick_lp(theta, bx, by, bw, om2, par, j, kw, tgt2, acc):
+def wall_stick_lp(y, bx, by, bw, om2, par, j, kw, tgt2, acc):
     """Base corner j sticking on the ground and wall point kw (2 or K_NEAR)
     closed on a frictional wall (mu_w > 0): three constraints fix the
     motion, the four forces (N, F at the pivot, N_w, F_w at the wall) are
@@ -1862,22 +2000,24 @@ def wall_stick_lp(theta, bx, by, bw, om2, par, j, kw, tgt2, acc):
     pre-impact velocity, om2 = 0, tgt2: the wall's target velocity): the
     motion (``acc``) does not depend on P.  Returns (ok, margin, P, N, F,
     N_w): P the admissible wall force closest to 0 if there is one (else
-    the maximiser)."""
+    the maximiser).  P is along the wall contact's tangent (``geom``)."""
     st0 = CS_STICK if j == 0 else CS_OPEN
     st1 = CS_STICK if j == 1 else CS_OPEN
     stw = wall_state(kw, 0)
     iG = par[C_IG]
-    rx, ry = point_offset(kw, theta, par)
-    # the response to a unit tangential wall force along (0, 1), i.e. the
-    # free acceleration (dx, dy, dw) = (0, 1, -rx / iG), alone (the system
-    # is linear: solved on its own, not as a difference of two solves)
+    rx, ry, _nx, _ny, tx, ty = geom(kw, y, par)
+    # the response to a unit tangential wall force along the wall's tangent
+    # t, i.e. the free acceleration (dx, dy, dw) = (t_x, t_y, j_t / iG), alone
+    # (the system is linear: solved on its own, not as a difference of two
+    # solves)
     tmp = np.empty(3)
     ok1, N0, F0, N1, F1, bW, _F2 = solve_targets(
-        theta, 0.0, 1.0, -rx / iG, 0.0, par, st0, st1, stw, 0.0, tmp)
+        y, tx, ty, (ry * tx - rx * ty) / iG, 0.0, par, st0, st1, stw, 0.0,
+        tmp)
     bN = N1 if j == 1 else N0
     bF = F1 if j == 1 else F0
     ok, N0, F0, N1, F1, Nw, _F2 = solve_targets(
-        theta, bx, by, bw, om2, par, st0, st1, stw, tgt2, acc)
+        y, bx, by, bw, om2, par, st0, st1, stw, tgt2, acc)
     aN = N1 if j == 1 else N0
     aF = F1 if j == 1 else F0
     if not (ok and ok1):
@@ -1997,7 +2137,7 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post, kw=2):
     _g, _vn, vt0 = point_kin(j, y, par)
     tol = before * (1.0 + 1e-12) + 1e-300
     ok, N0, F0, N1, F1, N2, _F2 = solve_targets(
-        th, vgx, vgy, om, 0.0, par, CS_STICK if j == 0 else CS_OPEN,
+        y, vgx, vgy, om, 0.0, par, CS_STICK if j == 0 else CS_OPEN,
         CS_STICK if j == 1 else CS_OPEN, stw, tgt, post)
     N = N1 if j == 1 else N0
     F = F1 if j == 1 else F0
@@ -2012,7 +2152,7 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post, kw=2):
     cand = np.empty(3)
     st = slip_state(sig)
     ok, N0, _F0, N1, _F1, N2, _F2 = solve_targets(
-        th, vgx, vgy, om, 0.0, par, st if j == 0 else CS_OPEN,
+        y, vgx, vgy, om, 0.0, par, st if j == 0 else CS_OPEN,
         st if j == 1 else CS_OPEN, stw, tgt, cand)
     N = N1 if j == 1 else N0
     if ok and N >= 0.0 and N2 >= 0.0:
@@ -2022,7 +2162,7 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post, kw=2):
             for i in range(3):
                 post[i] = cand[i]
             return False
-    solve_targets(th, vgx, vgy, om, 0.0, par, CS_OPEN, CS_OPEN, stw, tgt,
+    solve_targets(y, vgx, vgy, om, 0.0, par, CS_OPEN, CS_OPEN, stw, tgt,
                   cand)
     E, tmp = post_energy(y, par, cand)
     _g, vn1, vt1 = point_kin(j, tmp, par)
@@ -2040,10 +2180,9 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post, kw=2):
     wtt = 1.0 + ry * ry / iG
     wtn = -ry * rx / iG
     wnn = 1.0 + rx * rx / iG
-    rwx, rwy = point_offset(kw, th, par)
-    nwx = -par[P_WALL_SIDE]
-    jw = rwy * nwx
-    ww = nwx * nwx + jw * jw / iG
+    rwx, rwy, nwx, nwy, _tx, _ty = geom(kw, y, par)
+    jw = rwy * nwx - rwx * nwy
+    ww = nwx * nwx + nwy * nwy + jw * jw / iG
     scale = math.sqrt(2.0 * before) + 1e-300
     for _it in range(200):
         tmp = y.copy()
@@ -2060,6 +2199,7 @@ def wall_pivot_impact(j, y, par, vgx, vgy, tgt, before, post, kw=2):
             break
         pw = -vn2 / ww
         post[0] += nwx * pw
+        post[1] += nwy * pw
         post[2] += jw * pw / iG
     return False
 
@@ -2107,13 +2247,12 @@ def routh_more(wtt, wtn, wnn, vt, vn, mu_s, mu_k, dp):
 
 
 @jit
-def point_inertia(k, theta, par):
+def point_inertia(k, y, par):
     """Contact-space inverse inertia (per unit mass) of point k in its
-    (t, n) frame: (wtt, wtn, wnn, jt, jn) with j = r_y d_x - r_x d_y the
-    rotation column (theta' clockwise) of direction d."""
+    (t, n) frame in state y: (wtt, wtn, wnn, jt, jn) with j = r_y d_x -
+    r_x d_y the rotation column (theta' clockwise) of direction d."""
     iG = par[C_IG]
-    rx, ry = point_offset(k, theta, par)
-    nx, ny, tx, ty = frame(k, par)
+    rx, ry, nx, ny, tx, ty = geom(k, y, par)
     jt = ry * tx - rx * ty
     jn = ry * nx - rx * ny
     return (tx * tx + ty * ty + jt * jt / iG, tx * nx + ty * ny + jt * jn / iG,
@@ -2137,8 +2276,8 @@ def point_impulse(k, y, par, post, e, mu_s, mu_k, imp, i0):
     _g, vn, vt = point_kin(k, tmp, par)
     if not vn < 0.0:
         return
-    wtt, wtn, wnn, jt, jn = point_inertia(k, tmp[0], par)
-    nx, ny, tx, ty = frame(k, par)
+    wtt, wtn, wnn, jt, jn = point_inertia(k, tmp, par)
+    _rx, _ry, nx, ny, tx, ty = geom(k, tmp, par)
     iG = par[C_IG]
     pt, pn, vt1 = routh_general(wtt, wtn, wnn, vt, vn, mu_s, mu_k)
     if e > 0.0 and pn > 0.0:
@@ -2180,18 +2319,18 @@ def wall_pivot_impact_fr(j, y, par, vgx, vgy, tgt, before, post, kw, imp):
       4. else sequential plastic frictional impulses of the pivot and the
          wall point (Routh each, dissipative) while either approaches.
     imp receives (L_n, L_t) of the pivot and (P_n, P_t) of the wall (per
-    unit mass; P_t along (0, 1)).  Returns True when the pivot separates."""
+    unit mass; P_t along the wall contact's tangent, (0, 1) for a tall
+    wall).  Returns True when the pivot separates."""
     mu_s = par[C_MU_S]
     mu_k = par[C_MU_K]
     mu_w = par[C_MU_W]
-    th = y[0]
     om = y[1]
     for i in range(4):
         imp[i] = 0.0
     _g, _vn, vt0 = point_kin(j, y, par)
     _g, _vnw, vtw0 = point_kin(kw, y, par)
     tol = before * (1.0 + 1e-12) + 1e-300
-    okl, m, P, N, F, Nw = wall_stick_lp(th, vgx, vgy, om, 0.0, par, j, kw,
+    okl, m, P, N, F, Nw = wall_stick_lp(y, vgx, vgy, om, 0.0, par, j, kw,
                                         tgt, post)
     if okl and m >= 0.0:
         E, _tmp = post_energy(y, par, post)
@@ -2213,7 +2352,7 @@ def wall_pivot_impact_fr(j, y, par, vgx, vgy, tgt, before, post, kw, imp):
     for c in range(3):
         wm = 1 if c == 0 else (2 * sw if c == 1 else -2 * sw)
         ok, N0, F0, N1, F1, N2, F2 = solve_targets(
-            th, vgx, vgy, om, 0.0, par, st0, st1, wall_state(kw, wm), tgt,
+            y, vgx, vgy, om, 0.0, par, st0, st1, wall_state(kw, wm), tgt,
             cand)
         if c == 0 and abs(vtw0) <= V_TOL:
             sw = -1 if F2 > 0.0 else 1
@@ -2527,13 +2666,13 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
         point_impulse(kw, y, par, post, e_w, par[C_MU_W], par[C_MU_W], imp,
                       2)
     elif mode == MODE_FLIGHT:
-        solve_targets(y[0], vgx, vgy, y[1], 0.0, par, CS_OPEN, CS_OPEN,
+        solve_targets(y, vgx, vgy, y[1], 0.0, par, CS_OPEN, CS_OPEN,
                       stw, tgt, post)
     elif mode == MODE_ROCK and not np.isfinite(par[C_MU_S]):
         # mu = inf: the pivot is held (bilateral, as the single-DOF map of
         # kernels/wall.py: theta'+ = -e_w theta'-), whatever the sign of its
         # normal impulse
-        solve_targets(y[0], vgx, vgy, y[1], 0.0, par,
+        solve_targets(y, vgx, vgy, y[1], 0.0, par,
                       CS_STICK if j == 0 else CS_OPEN,
                       CS_STICK if j == 1 else CS_OPEN, stw, tgt, post)
     elif wall_frictional(par):
@@ -2735,9 +2874,11 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             # the slip along the wall stopped: v_tw = 0 (up to the event's
             # location), taken as the wall's tangential impulse stopping it
             vgx, vgy = cm_velocity(y, par)
-            wtt, wtn, wnn, jt, jn = point_inertia(kw, y[0], par)
+            wtt, wtn, wnn, jt, jn = point_inertia(kw, y, par)
+            _rx, _ry, _nx, _ny, tx, ty = geom(kw, y, par)
             pt = -vtw / wtt
-            set_cm_velocity(y, par, vgx, vgy + pt, y[1] + jt * pt / par[C_IG])
+            set_cm_velocity(y, par, vgx + tx * pt, vgy + ty * pt,
+                            y[1] + jt * pt / par[C_IG])
             pick_wall_flight(kw, t, y, par, disc, hdr, smp, 1)
             return RUNNING
         if k == K_SLIP:

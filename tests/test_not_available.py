@@ -23,10 +23,7 @@ SCENES = [
     (BLOCK, {"foundation": FND, "wall": fr.Wall(0.05), "friction": fr.Friction(0.5)}, "foundation"),
     (FLEX, {"foundation": FND}, "foundation"),
     (ASYM, {"foundation": FND}, "foundation"),
-    (BLOCK, {"wall": fr.Wall(0.05, height=0.5), "friction": fr.Friction(0.5)}, "lower than the block"),
     (UNEVEN, {"friction": fr.Friction(0.5)}, "h1 = "),
-    # an asymmetric body runs this in the wall model (tests/test_wall_body.py), not with friction
-    (ASYM, {"wall": fr.Wall(0.05, side=-1, height=0.5), "friction": fr.Friction(0.5)}, "lower than the block"),
 ]
 
 
@@ -37,7 +34,6 @@ def test_readme_lists_the_refused_combinations():
                    "`foundation=` together with `wall=` or `friction=`",
                    "a `FlexibleBody` on a foundation, and an asymmetric `RigidBody` on the switching or "
                    "linear foundation (it runs on `TwoSpringFoundation`)",
-                   "a wall lower than the body",
                    "an asymmetric body whose two pivots are not level"):
         assert phrase in text, phrase
     # every refusal of the registry is one of the listed kinds

@@ -156,7 +156,8 @@ def _rectangle(body):
 def contact_par(body, friction, wall=None):
     """Parameters of the contact model (kernels/contact.py): a RigidBlock, or an asymmetric
     RigidBody on a level base, whose base corners touch the ground with ``friction`` (mu_s may be
-    inf), and a tall wall (its Coulomb coefficient ``wall.friction``, 0: frictionless)."""
+    inf), and a wall (its Coulomb coefficient ``wall.friction``, 0: frictionless), tall or lower than
+    the body's wall-side top corner (its top edge touched by the body's face)."""
     from fastrock.kernels import layout as K
     from fastrock.model.rigid_body import RigidBody
     par = np.zeros(K.N_PAR_CONTACT)
@@ -176,11 +177,11 @@ def contact_par(body, friction, wall=None):
     par[K.C_MU_K] = friction.mu_k
     par[K.C_GAP] = np.inf
     if wall is not None:
+        from fastrock.kernels.contact import C_H_WALL
         top = par[K.C_HT2] if wall.side > 0 else par[K.C_HT1]
         if wall.height is not None and wall.height < par[K.C_H1] + top:
-            raise ValueError("wall: a wall lower than the block (height < 2h; for a RigidBody, than its "
-                             "wall-side top corner) is not in the contact model yet; run it without "
-                             "friction and flight (the wall model)")
+            # lower than the wall-side top corner: its top edge is a contact feature
+            par[C_H_WALL] = wall.height
         par[K.P_WALL_SIDE] = float(wall.side)
         par[K.P_E_W] = wall.restitution
         par[K.C_GAP] = wall.gap
