@@ -189,17 +189,12 @@ from .rigid import (P_ALPHA, P_E, P_E_W, P_G, P_THETA_OVER, P_WALL_SIDE,
                     track_rotation)
 
 # ---- parameters and flight metrics: kernels/layout.py ----------------------
-from .layout import (C_ALPHA_NEG, C_B1, C_B2, C_E_NEG, C_GAP, C_H1,  # noqa: E402,F401
+from .layout import (C_ALPHA_NEG, C_B1, C_B2, C_E_NEG, C_GAP, C_H1, C_H_WALL,  # noqa: E402,F401
                      C_H2, C_HT1, C_HT2, C_IG, C_MU_K, C_MU_S, C_MU_W,
                      M_MAX_JUMP, M_N_FLIGHTS,
                      M_T_FLIGHT, N_PAR_CONTACT as N_PAR)
 N_STATE = 6
 assert M_MAX_JUMP < N_MET
-# m, the height above the ground of a wall lower than the body's wall-side
-# top corner (a short wall: its top edge E is a contact feature); 0: a tall
-# wall.  A slot N_PAR_CONTACT leaves free: to be named in kernels/layout.py
-C_H_WALL = 23
-assert C_H_WALL < N_PAR
 # the feature of a short wall's contact (``wall_geom``)
 WG_CORNER = 0     # the top corner against the wall's face (below E)
 WG_EDGE = 1       # E against the body's wall-side face
@@ -1590,7 +1585,6 @@ def pick_single_ground(j, t, y, par, disc, hdr, smp, met, log, cnt,
         y[3] -= vt
         vt = 0.0
     acc = np.empty(3)
-    s = 1 if j == 1 else -1
     if vt != 0.0:
         sig = sign_of(vt)
         st = slip_state(sig)

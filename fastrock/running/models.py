@@ -177,7 +177,7 @@ def contact_par(body, friction, wall=None):
     par[K.C_MU_K] = friction.mu_k
     par[K.C_GAP] = np.inf
     if wall is not None:
-        from fastrock.kernels.contact import C_H_WALL
+        from fastrock.kernels.layout import C_H_WALL
         top = par[K.C_HT2] if wall.side > 0 else par[K.C_HT1]
         if wall.height is not None and wall.height < par[K.C_H1] + top:
             # lower than the wall-side top corner: its top edge is a contact feature
