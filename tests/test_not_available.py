@@ -34,8 +34,12 @@ def test_readme_lists_the_refused_combinations():
                    "`foundation=` together with `wall=` or `friction=`",
                    "a `FlexibleBody` on a foundation, and an asymmetric `RigidBody` on the switching or "
                    "linear foundation (it runs on `TwoSpringFoundation`)",
-                   "an asymmetric body whose two pivots are not level"):
+                   ):
         assert phrase in text, phrase
+    # pivots at different heights are ruled out on one ground plane, with the turn that fixes it
+    ruled_out = text.split("**Ruled out by the physics**")[1]
+    assert "an asymmetric body whose two pivots are not level" in ruled_out
+    assert "`body.on_level_ground()`" in ruled_out
     # every refusal of the registry is one of the listed kinds
     for (body, effects) in registry.NOT_AVAILABLE:
         assert body == "flexible" and effects == {"wall", "friction"} or "foundation" in effects

@@ -279,6 +279,54 @@ class RigidBody:
         return RigidBlock(alpha=self.alpha1, p=self.p1, e=self.e12, g=self.g, theta_over=self.theta_over,
                           b=self.b1, h=self.h1, top_radius=self.top_radius if self.top == "rounded" else None)
 
+    @property
+    def has_level_base(self):
+        """True when the two pivots are at one height (h1 = h2 to 1e-9 relative): the body
+        stands on one plane on both pivots."""
+        return abs(self.h1 - self.h2) <= LEVEL_BASE_RTOL * max(self.h1, self.h2)
+
+    def on_level_ground(self):
+        """This body as it rests on one plane: turned about its centre of mass until its two
+        pivots are at one height (h1 = h2), as :meth:`from_polygon` lays an outline's lowest
+        facet flat.
+
+        Pivots at different heights (h1 != h2) stand on a step: the rocking and wall models take
+        them so, with theta = 0 the pose on both pivots.  Sliding, flight and a flexible foundation
+        have one ground plane, which such a body touches on both pivots only in this turned pose.
+        Mass, I_G, the restitution and the pivots' distances from the centre of mass (hence
+        R1, R2 and the impact map) are unchanged; alpha1 and alpha2 change by the turn.  A body
+        with a level base is returned as it is.
+
+        Raises ValueError naming ``h1``/``h2`` when the centre of mass does not project between
+        the pivots in the turned pose (the body cannot stand on level ground), ``top`` for a
+        rounded top (its arc is defined on an upright face), and ``theta_over`` when it is no
+        longer above both new alphas.
+
+        Examples
+        --------
+        >>> step = RigidBody(mass=1.0, inertia=0.1, b1=0.2, h1=0.8, b2=0.3, h2=0.9)
+        >>> flat = step.on_level_ground()
+        >>> flat.has_level_base, round(flat.b1, 6), round(flat.b2, 6), round(flat.h1, 6)
+        (True, 0.039223, 0.470679, 0.823688)
+        """
+        if self.has_level_base:
+            return self
+        if self.top == "rounded":
+            raise ValueError("top: a rounded top is defined on an upright wall-side face; turning a body with "
+                             "pivots at different heights (h1 != h2) onto level ground would tilt it. Give the "
+                             "body in its resting pose (from_polygon with the outline) instead")
+        # P1 -> P2 is (b1 + b2, h1 - h2); a clockwise turn by its angle lays it flat (geo.rotate)
+        tilt = math.atan2(self.h1 - self.h2, self.b1 + self.b2)
+        (x1, y1), (x2, y2) = geo.rotate(np.array(self.pivots), tilt)
+        y0 = 0.5 * (y1 + y2)
+        if not x1 < 0.0 < x2:
+            raise ValueError(f"h1, h2: the body cannot stand on level ground: turned by {tilt:.6g} rad to put "
+                             f"its pivots at one height, its centre of mass projects at 0 outside the "
+                             f"support [{x1:.6g}, {x2:.6g}] m")
+        outline = None if self.outline is None else geo.rotate(self.outline, tilt)
+        return RigidBody(mass=self.mass, inertia=self.inertia, b1=-x1, h1=-y0, b2=x2, h2=-y0, e=self.e,
+                         g=self.g, theta_over=self.theta_over, outline=outline)
+
     # ------------------------------------------------------- constructors
     @classmethod
     def from_block(cls, block, mass=1.0):
@@ -448,8 +496,10 @@ def level_base_height(body, needs, why):
     """h of a RigidBody with a level base (h1 = h2 to LEVEL_BASE_RTOL), else a ValueError saying
     what ``needs`` it and ``why``."""
     h1, h2 = body.h1, body.h2
-    if abs(h1 - h2) > LEVEL_BASE_RTOL * max(h1, h2):
-        raise ValueError(f"h1 = {h1:.6g} m and h2 = {h2:.6g} m differ: {needs} a level base (h1 = h2; {why}); "
-                         f"a RigidBody from a polygon or a mesh rests on its lowest facet and has one. "
-                         f"Without those effects it runs in the rocking model")
+    if not body.has_level_base:
+        raise ValueError(f"h1 = {h1:.6g} m and h2 = {h2:.6g} m differ: {needs} a level base (h1 = h2; {why}). "
+                         f"Pivots at different heights stand on a step, which the rocking model takes; on one "
+                         f"ground plane the body rests turned: body.on_level_ground() gives it in that pose "
+                         f"(on_level_ground = true in a scene's [body] table). A RigidBody from a polygon or a "
+                         f"mesh rests on its lowest facet and has a level base")
     return 0.5 * (h1 + h2)

@@ -174,7 +174,8 @@ _RIGID_BODY_COMMON = {"e", "g", "theta_over"}
 
 def rigid_body_from_table(d, base=None):
     """A RigidBody from a [body] table of type "rigid-body": its numbers (mass, inertia, b1, h1,
-    b2, h2, and top, top_radius), a 2D outline (``vertices`` [m], a list of [x, y] pairs or the
+    b2, h2, and top, top_radius; ``on_level_ground = true`` turns pivots at different heights
+    onto one plane, :meth:`RigidBody.on_level_ground`), a 2D outline (``vertices`` [m], a list of [x, y] pairs or the
     name of an outline file relative to the scene file (:func:`fastrock.read_outline`), with density [kg/m^3] and
     thickness [m], or mass [kg]; pose [rad]) or a mesh file (``mesh``, a path relative to the
     scene file; axis, up, density or mass, pose)."""
@@ -197,8 +198,13 @@ def rigid_body_from_table(d, base=None):
             if k in kw:
                 kw[k] = tuple(kw[k])
         return _build(lambda **k: RigidBody.from_mesh(Path(base or ".") / path, **k), kw, "body")
-    return _build(RigidBody, only_keys(d, "body", {"mass", "inertia", "b1", "h1", "b2", "h2", "top",
-                                                   "top_radius"} | _RIGID_BODY_COMMON), "body")
+    kw = only_keys(d, "body", {"mass", "inertia", "b1", "h1", "b2", "h2", "top", "top_radius",
+                               "on_level_ground"} | _RIGID_BODY_COMMON)
+    level = kw.pop("on_level_ground", False)
+    if not isinstance(level, bool):
+        raise ValueError(f"[body] on_level_ground must be true or false, got {level!r}")
+    body = _build(RigidBody, kw, "body")
+    return body.on_level_ground() if level else body
 
 
 def body_from_table(d, base=None):
