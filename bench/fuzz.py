@@ -65,7 +65,7 @@ cell gets ``violated:<invariant>``.
 * ``energy``: in ``simulate`` runs, after the pulse has ended, the mechanical energy computed
   from the history never rises between two consecutive rows by more than ``ENERGY_TOL`` +
   ``ENERGY_TOL_RTOL`` rtol of the energy scale (max |E| over the run, at least the barrier
-  1 - cos(alpha); rigid, wall: per pair of rows at least the size |T| + |V| of E's kinetic and
+  1 - cos(alpha); rigid, wall, friction, contact: per pair of rows at least the size |T| + |V| of E's kinetic and
   potential terms, which the solver's relative error control bounds: in an overturning fall they
   reach M g R while E stays near the barrier).  Rigid, wall: E = theta'^2/(2p^2) +
   cos(alpha - |theta|) - cos(alpha) [M g R].  Friction: (d' + Y_G theta')^2/2 + (X_G theta')^2/2 + I_G theta'^2/(2M) + g Y_G.
@@ -774,25 +774,9 @@ def energy(history, body, scene, family):
     s = history["pivot"].to_numpy().astype(float)
     s = np.where(s == 0, 1.0, s)
     dd = history["d_dot"].to_numpy() if "d_dot" in history else np.zeros_like(th)
-    if family == "friction":
-        from fastrock.running.models import rigid_friction_par
-        from fastrock.kernels import friction as K
-        par = rigid_friction_par(body, scene["friction"])
-        b, h, IG = par[K.Q_B], par[K.Q_H], par[K.Q_IG]
-        XG = -s * b * np.cos(th) + h * np.sin(th)
-        YG = s * b * np.sin(th) + h * np.cos(th)
-        return 0.5 * (dd + YG * w) ** 2 + 0.5 * (XG * w) ** 2 + 0.5 * IG * w * w + g * (YG - h)
-    if family == "contact":
-        # history: d, z = position of the base midpoint P; CM = P + h (sin th, cos th)
-        from fastrock.running.models import contact_par
-        from fastrock.kernels import layout as L
-        par = contact_par(body, scene["friction"], scene.get("wall"))
-        hm, IG = par[L.C_H1], par[L.C_IG]
-        z = history["z"].to_numpy()
-        dz = history["z_dot"].to_numpy()
-        vx = dd + hm * np.cos(th) * w
-        vy = dz - hm * np.sin(th) * w
-        return 0.5 * (vx * vx + vy * vy) + 0.5 * IG * w * w + g * (z + hm * np.cos(th) - hm)
+    if family in ("friction", "contact"):
+        kin, pot = rigid_sliding_energy(history, body, scene, family)
+        return kin + pot
     if family in ("flexible", "flexible_friction", "flexible_wall"):
         u = history["u"].to_numpy()
         du = history["u_dot"].to_numpy()
@@ -814,9 +798,41 @@ def energy(history, body, scene, family):
     return None
 
 
-def energy_terms(history, body, family):
-    """Per history row, the size of the terms that make up E, |T| + |V| [J/kg] (rigid, wall;
-    None for the other families): the scale of the integration error of E (see ``_sim_checks``)."""
+def rigid_sliding_energy(history, body, scene, family):
+    """(T, V) per history row [J/kg] of a rigid block that can slide (friction: d along the
+    ground, the pivot s; contact: d, z the position of the base midpoint, CM = P + h (sin, cos))."""
+    g = body.g
+    th = history["theta"].to_numpy()
+    w = history["theta_dot"].to_numpy()
+    dd = history["d_dot"].to_numpy()
+    if family == "friction":
+        from fastrock.running.models import rigid_friction_par
+        from fastrock.kernels import friction as K
+        s = history["pivot"].to_numpy().astype(float)
+        s = np.where(s == 0, 1.0, s)
+        par = rigid_friction_par(body, scene["friction"])
+        b, h, IG = par[K.Q_B], par[K.Q_H], par[K.Q_IG]
+        XG = -s * b * np.cos(th) + h * np.sin(th)
+        YG = s * b * np.sin(th) + h * np.cos(th)
+        return 0.5 * (dd + YG * w) ** 2 + 0.5 * (XG * w) ** 2 + 0.5 * IG * w * w, g * (YG - h)
+    from fastrock.running.models import contact_par
+    from fastrock.kernels import layout as L
+    par = contact_par(body, scene["friction"], scene.get("wall"))
+    hm, IG = par[L.C_H1], par[L.C_IG]
+    z = history["z"].to_numpy()
+    dz = history["z_dot"].to_numpy()
+    vx = dd + hm * np.cos(th) * w
+    vy = dz - hm * np.sin(th) * w
+    return 0.5 * (vx * vx + vy * vy) + 0.5 * IG * w * w, g * (z + hm * np.cos(th) - hm)
+
+
+def energy_terms(history, body, family, scene=None):
+    """Per history row, the size of the terms that make up E, |T| + |V| [J/kg] (rigid, wall,
+    friction, contact; None for the other families): the scale of the integration error of E (see
+    ``_sim_checks``)."""
+    if family in ("friction", "contact"):
+        kin, pot = rigid_sliding_energy(history, body, scene, family)
+        return np.abs(kin) + np.abs(pot)
     if family not in ("rigid", "wall"):
         return None
     g = body.g
@@ -1066,8 +1082,9 @@ def _sim_checks(res, P, main, limit):
         # overturning fall the two terms reach ~ M g R while E stays near the barrier 1 - cos(alpha):
         # seed 2026 had falls ending at E/(|T| + |V|) = 3e-5..3e-3, where 1e-6 + 100 rtol of E
         # flagged rises of 0.16..0.57 rtol of |T| + |V| (up to 3.9e3 rtol of E).  So each pair of rows is
-        # measured against the larger of E's scale and the size of its terms (rigid, wall).
-        terms = energy_terms(h, body, fam)
+        # measured against the larger of E's scale and the size of its terms (rigid, wall, and the
+        # sliding blocks: friction, contact; friction:2027:355 flagged 2.3e-5 of |T| + |V| in a fall).
+        terms = energy_terms(h, body, fam, scene)
         if terms is not None:
             escale = np.maximum(escale, terms)
         rtol = TIGHT_RTOL if scene["solver"].dt else scene["solver"].rtol

@@ -97,6 +97,32 @@ def test_energy_of_free_rocking_is_conserved_between_impacts():
     assert up < 1e-9 and fall == 0.0
 
 
+def test_friction_fall_energy_is_measured_against_its_terms():
+    """friction:2027:355 (b/h = 0.03, overturning): in the pure rocking part of the fall E stays
+    near 1e-3 J/kg while T and V each reach ~0.5 J/kg, so the solver's relative error of the
+    terms (rtol 2.5e-5) shows as a rise of 0.5 % of E.  The check measures each pair of rows
+    against |T| + |V|, as for the frictionless block; the fall then conserves E to about rtol
+    of its terms, and a real rise (tightening rtol does not shrink it) would still be caught."""
+    import numpy as np
+    P = fuzz.draw_batch("friction", 2027, 355, 32)
+    key = (2.825421947981182, 2.7208104804902065, -1)
+    run, _el, t_free, body, _kw = fuzz._simulate_cell(P, key)
+    assert run.outcome == "mode2"
+    h = run.history
+    scene = fuzz.build_scene(P, 1.0, None)
+    E = fuzz.energy(h, body, scene, "friction")
+    kin, pot = fuzz.rigid_sliding_energy(h, body, scene, "friction")
+    np.testing.assert_array_equal(E, kin + pot)
+    terms = fuzz.energy_terms(h, body, "friction", scene)
+    escale = max(float(np.max(np.abs(E))), body.g ** 2 / body.p ** 2 * (1 - np.cos(body.alpha)))
+    t, th = h["t"].to_numpy(), h["theta"].to_numpy()
+    tol = fuzz.ENERGY_TOL + fuzz.ENERGY_TOL_RTOL * P["rtol"]
+    _up, fall_e = fuzz.energy_growth(t, E, t_free, escale, th, body.alpha)
+    _up, fall_t = fuzz.energy_growth(t, E, t_free, np.maximum(escale, terms), th, body.alpha)
+    assert fall_e > tol          # against E alone the integration error looks like a gain
+    assert fall_t < 2.0 * P["rtol"]  # against the terms it is about rtol
+
+
 def test_mu_inf_difference_explained_only_by_the_frictionless_pivot_tension():
     """The friction family's mu_inf check counts a difference between Friction(1e6) and the
     frictionless block as not comparable (reported ``mu_inf_tension``) only when its own numpy
