@@ -138,7 +138,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     vertical = X.match_components(excitation, vertical, resample_vertical)
     if foundation is not None:
         from fastrock.running.foundation import simulate_foundation
-        return simulate_foundation(body, foundation, excitation, mass=mass, vertical=vertical, theta0=theta0,
+        return simulate_foundation(body, foundation, excitation, mass=mass, vertical=vertical, friction=friction,
+                                   theta0=theta0,
                                    dtheta0=dtheta0, duration=duration, t_after=t_after, t_eval=t_eval,
                                    solver=make_solver(solver, rtol, atol, dt, **kw), allow_overturn=True,
                                    history_capacity=history_capacity, ground=ground, early_exit=early_exit)
