@@ -35,6 +35,13 @@ def foundation_spec(body, foundation, mass=None, friction=None):
     return spec, block_inertia(body, mass)
 
 
+def with_slide(spec, y0):
+    """The foundation's initial state, with (d, d') = (0, 0) appended for a sliding model: the
+    base starts at rest where it stands."""
+    y0 = np.asarray(y0, float)
+    return np.concatenate([y0, np.zeros(2)]) if spec.friction else y0
+
+
 # ------------------------------------------------------------------------- simulation
 def integrate_foundation(spec, y0, hdr, smp, opt, te, cap):
     """Run the kernel, growing the history buffer until it fits."""
@@ -138,9 +145,7 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
     _check_release(body, theta0, V.boolean("allow_overturn", allow_overturn))
     hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
                                         history_capacity, solver, V.boolean("early_exit", early_exit), ground)
-    y0 = foundation.initial_state(blk, theta0, dtheta0, ground)
-    if spec.friction:
-        y0 = np.concatenate([y0, [0.0, 0.0]])      # the base starts at rest where it stands
+    y0 = with_slide(spec, foundation.initial_state(blk, theta0, dtheta0, ground))
     code, t, Y, D, lg, met, cnt = integrate_foundation(spec, y0, hdr, smp, opt, te, cap)
     if solver.dt:
         checked = None

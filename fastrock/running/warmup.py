@@ -14,7 +14,7 @@ import numpy as np
 FAMILIES = {
     "wall": ("rigid_wall",),
     "friction": ("rigid_friction",),
-    "foundation": ("two_spring", "switching", "linear_sdof"),
+    "foundation": ("two_spring", "switching", "linear_sdof", "two_spring_friction"),
 }
 
 
@@ -44,6 +44,8 @@ def _example(name):
         "two_spring": (block, {"foundation": TwoSpringFoundation.from_vibration(block, 30.0, 0.05)}),
         "switching": (block, {"foundation": SwitchingFoundation.from_vibration(block, 30.0, 0.05)}),
         "linear_sdof": (block, {"foundation": LinearVibration(10.0, 0.1)}),
+        "two_spring_friction": (block, {"foundation": TwoSpringFoundation.from_vibration(block, 30.0, 0.05),
+                                        "friction": Friction(0.3)}),
     }[name]
 
 
@@ -62,7 +64,8 @@ def warm_model(name):
     y0 = np.zeros(spec.n_state)
     if "foundation" in effects:
         from fastrock.model.foundation import block_inertia
-        y0 = effects["foundation"].initial_state(block_inertia(body, 1.0), 0.0, 0.0)
+        from fastrock.running.foundation import with_slide
+        y0 = with_slide(spec, effects["foundation"].initial_state(block_inertia(body, 1.0), 0.0, 0.0))
     hdr, smp = X.to_header(body, Pulse(3.0, 2.0, amplitude_unit="g_tan_alpha"))
     opt = Solver().options(0.5, False)
     y = y0.copy()
