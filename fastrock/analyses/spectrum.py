@@ -156,7 +156,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         ratios and the physical values (amplitude_g, frequency_hz).
     wall : Wall, optional
     friction : Friction, optional
-        Adds the outcome "slide" and the columns max_slide, residual_slide [m].
+        Adds the outcome "slide" and the columns max_slide, residual_slide [m]
+        (with a TwoSpringFoundation too: the base slides on the corner springs).
     foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration, optional
         The block stands on a flexible foundation instead of rigid ground
         (``body`` a RigidBlock with b and h); every run starts at rest in

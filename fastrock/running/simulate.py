@@ -82,7 +82,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         One-sided rocking against a rear wall.
     friction : Friction, optional
         Coulomb friction (sliding and slide-rocking); None or mu_s = inf:
-        no sliding degree of freedom at all.
+        no sliding degree of freedom at all.  With a TwoSpringFoundation the
+        base slides on the corner springs (model two_spring_friction).
     foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration, optional
         A flexible foundation under a RigidBlock or RigidBody (rocking against
         vibration; an asymmetric body on TwoSpringFoundation only);
