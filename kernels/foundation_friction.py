@@ -88,6 +88,9 @@ FREE = 2
 I_D = 4                 # d, d' in the state vector
 FF_SLIP = TS_N_EVENTS   # stick: mu_s N - |H_s|; slip: sigma d'
 FF_N_EVENTS = TS_N_EVENTS + 1
+# the stop event's value at the start of a slip [m/s]: positive, below any
+# speed the integration resolves
+SLIP_START = 1e-300
 # time step of the central difference that gives the stick margin's rate
 # (used only to spot a margin's interior minimum inside a step)
 FD_REL = 1e-7
@@ -177,7 +180,14 @@ def ff_slip_event(t, y, par, disc, hdr, smp):
         return np.inf, 0.0
     if fs != STICK:
         _ydd, _qdd, ddd = ff_all(t, y, par, disc, hdr, smp)
-        return fs * y[I_D + 1], fs * ddd
+        v = fs * y[I_D + 1]
+        if v == 0.0:
+            # a slip that starts (d' = 0) leaves toward sigma (sigma d'' > 0,
+            # module docstring): it starts on the admissible side, not on
+            # the surface, which a step's end past another event (a corner
+            # about to lift, foundation_friction:fuzz:31) would misjudge
+            v = SLIP_START
+        return v, fs * ddd
     g = stick_margin(t, y, par, disc, hdr, smp)
     # its rate by a central difference along the flow: an exact one needs
     # q''' of the corner system, and the rate only flags an interior minimum

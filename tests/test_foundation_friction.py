@@ -239,6 +239,20 @@ def test_small_friction_slides_by_minus_the_double_integral_of_the_ground():
         assert abs(xG[-1] - free[-1]) > 0.3 * bound[-1]       # friction acts: the bound is not slack
 
 
+def test_a_slip_that_starts_as_its_corner_lifts_runs_on():
+    """A found case (a random pulse run): rocking on its left corner, the block starts to slip
+    when that corner carries 4e-5 N, 7e-7 s before the corner lifts.  The slip starts at d' = 0
+    toward sigma with sigma d'' > 0; the step's end beyond the lift-off once made the stop event
+    read as 'on the surface' at once, and the run failed with a transition loop."""
+    blk = RigidBlock.rectangle(b=0.15227369832291068, h=0.3731360800043914)
+    fnd = TwoSpringFoundation.from_vibration(blk, 91.57531288602313, 0.0)
+    exc = Pulse(3.4147800850072367, 3.289655568703106, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+    r = fr.simulate(blk, exc, foundation=fnd, friction=Friction(0.3057820846897209, 0.19973847518528975))
+    assert r.status_code >= 0 and r.status == "safe:rest"
+    ev = list(r.events["event"])
+    assert any(a == "slip" and b == "flight" for a, b in zip(ev, ev[1:]))
+
+
 # -------------------------------------------------------------------------- energy
 def _energy(r, fnd, blk):
     h = r.history
@@ -253,7 +267,9 @@ def _energy(r, fnd, blk):
 
 
 @settings(max_examples=30, deadline=None)
-@given(theta_ratio=st.floats(-0.9, 0.9), dtheta0=st.floats(-1.0, 1.0), mu=st.floats(0.02, 0.8),
+# rounded: a release of 1e-308 rad is refused as denormal, and tells nothing more than 0
+@given(theta_ratio=st.floats(-0.9, 0.9).map(lambda x: round(x, 9)),
+       dtheta0=st.floats(-1.0, 1.0).map(lambda x: round(x, 9)), mu=st.floats(0.02, 0.8),
        zeta=st.sampled_from([0.0, 0.05]), omega=st.floats(15.0, 60.0))
 def test_free_motion_never_gains_energy(theta_ratio, dtheta0, mu, zeta, omega):
     fnd = TwoSpringFoundation.from_vibration(BLOCK, omega, zeta)
@@ -263,7 +279,7 @@ def test_free_motion_never_gains_energy(theta_ratio, dtheta0, mu, zeta, omega):
     assert r.status_code >= 0
     E = _energy(r, fnd, blk)
     scale = blk.M * blk.g * blk.b
-    assert np.max(np.diff(E)) < 1e-7 * scale
+    assert np.max(np.diff(E)) < 1e-8 * scale
 
 
 # -------------------------------------------------------------------------- mirror
