@@ -139,11 +139,13 @@ def sliding_accelerations(t, y, par, disc, H, hdr, smp):
 def ff_all(t, y, par, disc, hdr, smp):
     """(y_c'', q'', d'') of the friction state in disc."""
     fs = disc[D_FRIC]
-    if fs == STICK:
+    if fs == STICK and (disc[D_RIGHT] != 0 or disc[D_LEFT] != 0):
         ydd, qdd = ts_accelerations(t, y, par, disc, hdr, smp)
         return ydd, qdd, 0.0
+    # no stick without a corner in contact (the zero-force rule asks with a
+    # corner switched off): free, as with N = 0 in a slip
     H = 0.0
-    if fs != FREE:
+    if fs != FREE and fs != STICK:
         fR, fL = normal_forces(y, par, disc)
         H = -fs * par[P_MU_K] * (fR + fL)
     return sliding_accelerations(t, y, par, disc, H, hdr, smp)
