@@ -284,6 +284,22 @@ def test_free_motion_never_gains_energy(theta_ratio, dtheta0, mu, zeta, omega):
     assert np.max(np.diff(E)) < 1e-8 * scale
 
 
+def test_a_block_at_rest_on_a_slope_sticks_and_slides_downhill_when_shaken():
+    """On a slope with tan(phi) < mu_s the block starts at its static tilt on the springs and
+    sticks (the reaction M g sin(phi) is within mu_s N): without shaking nothing moves.  A pulse
+    that overcomes friction leaves a residual slide, larger downhill (Newmark's asymmetry)."""
+    fnd = TwoSpringFoundation.from_vibration(STOUT, 60.0, 0.1)
+    ground = fr.Ground(slope=math.radians(5.0))
+    fric = Friction(0.3)
+    r = fr.simulate(STOUT, None, foundation=fnd, friction=fric, ground=ground, duration=2.0)
+    assert r.kernel == "two_spring_friction" and r.metrics["max_slide"] == 0.0
+    assert r.metrics["stick_slip"] == 0 and set(r.history["contact"]) == {"contact"}
+    slides = [fr.simulate(STOUT, Pulse(0.35, 1.0, kind="rectangular", duration=0.3, sign=s), foundation=fnd,
+                          friction=fric, ground=ground).metrics["residual_slide"] for s in (1, -1)]
+    # +x is downhill: the ground pushed uphill (sign -1) leaves the block further downhill
+    assert slides[1] > 0.0 and slides[1] > abs(slides[0])
+
+
 # -------------------------------------------------------------------------- mirror
 def test_the_mirrored_pulse_mirrors_rotation_and_slide():
     fnd = TwoSpringFoundation.from_vibration(BLOCK, 30.0, 0.05)
