@@ -255,6 +255,46 @@ def test_a_slip_that_starts_as_its_corner_lifts_runs_on():
     assert any(a == "slip" and b == "flight" for a, b in zip(ev, ev[1:]))
 
 
+def test_in_flight_the_block_is_free_horizontally_too():
+    """A vertical pulse beyond g throws the block off its springs.  With no corner in contact
+    H = N = 0: the rotation rate stays constant and the centre of mass moves ballistically in
+    the ground's frame, x_G'' = -a_g and y_G'' = -(g + a_v) (the two-spring model holds the
+    base horizontally instead).  Checked over each flight against the pulses' closed-form
+    integrals."""
+    fnd = TwoSpringFoundation.from_vibration(BLOCK, 30.0, 0.05)
+    A, f, Av, fv = 0.3, 2.0, 1.5, 3.0
+    r = fr.simulate(BLOCK, Pulse(A, f), vertical=Pulse(Av, fv, sign=-1), foundation=fnd,
+                    friction=Friction(0.5), rtol=1e-10, atol=1e-12)
+    g = BLOCK.g
+    w, wv = 2 * math.pi * f, 2 * math.pi * fv
+
+    def int_ag(t):          # integral of a_g from 0 to t (one-sine, then 0)
+        t = min(t, 1 / f)
+        return A * g * (1 - math.cos(w * t)) / w
+
+    def int_G(t):           # integral of g + a_v (a_v = -Av g sin(wv t) for t < 1/fv)
+        tv = min(t, 1 / fv)
+        return g * t - Av * g * (1 - math.cos(wv * tv)) / wv
+
+    h = r.history
+    hh = block_inertia(BLOCK).h
+    q, qd = h["theta"].to_numpy(), h["theta_dot"].to_numpy()
+    vx = h["d_dot"].to_numpy() + hh * np.cos(q) * qd
+    vy = h["y_dot"].to_numpy() - hh * np.sin(q) * qd
+    t = h["t"].to_numpy()
+    flying = (h["contact"] == "flight").to_numpy()
+    starts = np.flatnonzero(flying & ~np.r_[False, flying[:-1]])
+    assert len(starts) >= 2
+    for i in starts:
+        j = i
+        while j + 1 < len(t) and flying[j + 1]:
+            j += 1
+        assert t[j] - t[i] > 1e-3
+        np.testing.assert_allclose(qd[i:j + 1], qd[i], rtol=1e-9, atol=1e-12)
+        assert vx[j] - vx[i] == pytest.approx(-(int_ag(t[j]) - int_ag(t[i])), rel=1e-7, abs=1e-10)
+        assert vy[j] - vy[i] == pytest.approx(-(int_G(t[j]) - int_G(t[i])), rel=1e-7, abs=1e-10)
+
+
 # -------------------------------------------------------------------------- energy
 def _energy(r, fnd, blk):
     h = r.history
