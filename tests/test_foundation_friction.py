@@ -11,6 +11,8 @@ Oracles:
 - a stout block (no uplift) slides as the rigid sliding block's closed form (rectangular pulse),
   converging as the springs stiffen; with mu small its centre of mass follows minus the double
   integral of a_g to within the friction impulse's bound mu max(N)/M t^2/2;
+- in flight (a vertical pulse beyond g) the centre of mass moves ballistically and theta' is
+  constant; on a slope the block at rest sticks, and a pulse slides it further downhill;
 - E = T + M g y_G + springs never increases in free motion (hypothesis);
 - mirror symmetry; bad input; every entry point (simulate, spectrum, Scene/TOML, run_batch,
   Study, CLI) selects and runs the model.
