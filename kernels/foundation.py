@@ -67,7 +67,7 @@ import math
 
 import numpy as np
 
-from .config import jit, jit_parallel
+from .config import jit, jit_generic, jit_parallel
 from .excitation import ground, ground_rates
 from .hybrid import (EPS, book_time, check_energy, final_status, init_metrics,
                      integrate_hybrid, log_event, sweep_rows)
@@ -186,20 +186,28 @@ def corner_arm(side, par):
     return side * par[P_B] + par[P_B_SKEW]
 
 
+# The pieces below serve every body on the two springs: the state holds
+# (y_c, y_c') first and the rotation (q, q') at index iq (TS_IQ = 2 here;
+# kernels/foundation_flexible.py has the column in between), and the body's
+# (y_c'', q'') come from an ``accel(t, y, par, disc, hdr, smp)`` argument
+# (jit_generic: resolved statically in each model's entry kernel).
+TS_IQ = 2
+
+
 @jit
-def corner_compression(y, side, par):
+def corner_compression(y, iq, side, par):
     """(delta, delta') of corner ``side`` [m, m/s]."""
     x = corner_arm(side, par)
-    sq = math.sin(y[2])
-    cq = math.cos(y[2])
-    return -(y[0] - x * sq), -(y[1] - x * cq * y[3])
+    sq = math.sin(y[iq])
+    cq = math.cos(y[iq])
+    return -(y[0] - x * sq), -(y[1] - x * cq * y[iq + 1])
 
 
 @jit
-def corner_force(y, side, par, in_contact):
+def corner_force(y, iq, side, par, in_contact):
     if in_contact == 0:
         return 0.0
-    d, dd = corner_compression(y, side, par)
+    d, dd = corner_compression(y, iq, side, par)
     return par[P_KV] * d + par[P_CV] * dd
 
 
@@ -212,8 +220,8 @@ def ts_accelerations(t, y, par, disc, hdr, smp):
     h = par[P_H]
     b = par[P_B]
     IC = par[P_I_C]
-    fR = corner_force(y, 1.0, par, disc[D_RIGHT])
-    fL = corner_force(y, -1.0, par, disc[D_LEFT])
+    fR = corner_force(y, TS_IQ, 1.0, par, disc[D_RIGHT])
+    fL = corner_force(y, TS_IQ, -1.0, par, disc[D_LEFT])
     sq = math.sin(y[2])
     cq = math.cos(y[2])
     ry = fR + fL - M * G + M * h * cq * y[3] * y[3]
@@ -235,39 +243,43 @@ def ts_rhs(t, y, par, disc, hdr, smp, out):
     out[3] = qdd
 
 
-@jit
-def ts_force_rate(side, t, y, par, disc, hdr, smp):
+@jit_generic
+def ts_force_rate(accel, iq, side, t, y, par, disc, hdr, smp):
     """(f, f') of corner ``side``'s force law f = k_v delta + c_v delta' [N,
     N/s], f' with the accelerations of the contact state in disc."""
-    d, dd = corner_compression(y, side, par)
-    ydd, qdd = ts_accelerations(t, y, par, disc, hdr, smp)
+    d, dd = corner_compression(y, iq, side, par)
+    ydd, qdd = accel(t, y, par, disc, hdr, smp)
     x = corner_arm(side, par)
-    ddd = -(ydd - x * (math.cos(y[2]) * qdd - math.sin(y[2]) * y[3] * y[3]))
+    q = y[iq]
+    dq = y[iq + 1]
+    ddd = -(ydd - x * (math.cos(q) * qdd - math.sin(q) * dq * dq))
     return par[P_KV] * d + par[P_CV] * dd, par[P_KV] * dd + par[P_CV] * ddd
 
 
 @jit
-def ts_force_resolution(t, y, side, fdot, par):
+def ts_force_resolution(t, y, iq, side, fdot, par):
     """eps_f [N]: what a corner's force law f is known to at a located
-    switch, the rounding of its terms (and of the static load) plus what f
-    moves in two brackets of the root finder (4 eps max(|t|, 1) each)."""
-    d, dd = corner_compression(y, side, par)
+    switch, the rounding of its terms (and of the static load; P_MASS is
+    the whole carried mass) plus what f moves in two brackets of the root
+    finder (4 eps max(|t|, 1) each)."""
+    d, dd = corner_compression(y, iq, side, par)
     return 4.0 * EPS * (par[P_MASS] * par[P_G] + abs(par[P_KV] * d)
                         + abs(par[P_CV] * dd)) \
         + 8.0 * EPS * max(abs(t), 1.0) * abs(fdot)
 
 
-@jit
-def ts_corner_event(side, in_contact, held, t, y, par, disc, hdr, smp):
-    f, fdot = ts_force_rate(side, t, y, par, disc, hdr, smp)
+@jit_generic
+def ts_corner_event(accel, iq, side, in_contact, held, t, y, par, disc, hdr,
+                    smp):
+    f, fdot = ts_force_rate(accel, iq, side, t, y, par, disc, hdr, smp)
     # a held corner switches 2 eps_f past the surface (ts_corner_transition)
     off = 0.0
     if held == HELD:
-        off = 2.0 * ts_force_resolution(t, y, side, fdot, par)
+        off = 2.0 * ts_force_resolution(t, y, iq, side, fdot, par)
     if in_contact != 0:
         return f + off, fdot
     # free: stays free while delta < 0 or the spring-dashpot would pull
-    d, dd = corner_compression(y, side, par)
+    d, dd = corner_compression(y, iq, side, par)
     if held == HELD and d > 0.0:
         # pressed: the force law itself (no force over 2 eps_f is missed)
         return off - f, -fdot
@@ -276,33 +288,42 @@ def ts_corner_event(side, in_contact, held, t, y, par, disc, hdr, smp):
     return off - f, -fdot
 
 
-@jit
-def ts_event(k, t, y, par, disc, hdr, smp):
+@jit_generic
+def ts_shared_event(accel, iq, k, t, y, par, disc, hdr, smp):
+    """Events TS_RIGHT ... TS_PASS_ALPHA of any body on the two springs."""
+    q = y[iq]
+    dq = y[iq + 1]
     if k == TS_RIGHT:
-        g, gd = ts_corner_event(1.0, disc[D_RIGHT], disc[D_HOLD_RIGHT], t, y,
-                                par, disc, hdr, smp)
+        g, gd = ts_corner_event(accel, iq, 1.0, disc[D_RIGHT],
+                                disc[D_HOLD_RIGHT], t, y, par, disc, hdr, smp)
         return g, gd, True
     if k == TS_LEFT:
-        g, gd = ts_corner_event(-1.0, disc[D_LEFT], disc[D_HOLD_LEFT], t, y,
-                                par, disc, hdr, smp)
+        g, gd = ts_corner_event(accel, iq, -1.0, disc[D_LEFT],
+                                disc[D_HOLD_LEFT], t, y, par, disc, hdr, smp)
         return g, gd, True
     if k == TS_CROSS:
-        g, gd = cross_event(y[2], y[3], disc)
+        g, gd = cross_event(q, dq, disc)
         return g, gd, True
     if k == TS_OVERTURN:
-        sg = 1.0 if y[2] >= 0.0 else -1.0
-        return par[P_THETA_OVER] - sg * y[2], -sg * y[3], True
+        sg = 1.0 if q >= 0.0 else -1.0
+        return par[P_THETA_OVER] - sg * q, -sg * dq, True
     if k == TS_PEAK:
         sd = disc[D_SIDE]
         if sd == 0:
             return np.inf, 0.0, False
-        _ydd, qdd = ts_accelerations(t, y, par, disc, hdr, smp)
-        return sd * y[3], sd * qdd, False
+        _ydd, qdd = accel(t, y, par, disc, hdr, smp)
+        return sd * dq, sd * qdd, False
+    sg = 1.0 if q >= 0.0 else -1.0           # TS_PASS_ALPHA
+    return side_alpha(q, par) - sg * q, -sg * dq, False
+
+
+@jit
+def ts_event(k, t, y, par, disc, hdr, smp):
     if k == TS_REST:
         # fires at once: the phase ends where the static phase begins
         return (-1.0 if disc[D_STATIC] == 1 else np.inf), 0.0, True
-    sg = 1.0 if y[2] >= 0.0 else -1.0
-    return side_alpha(y[2], par) - sg * y[2], -sg * y[3], False
+    return ts_shared_event(ts_accelerations, TS_IQ, k, t, y, par, disc, hdr,
+                           smp)
 
 
 @jit
@@ -323,9 +344,9 @@ def ts_set_mode(disc):
         disc[D_PIVOT] = 0
 
 
-@jit
-def ts_corner_transition(side, slot, hold, t, y, par, disc, hdr, smp, met,
-                         log, cnt):
+@jit_generic
+def ts_corner_transition(accel, iq, side, slot, hold, t, y, par, disc, hdr,
+                         smp, met, log, cnt):
     """Switch corner ``side``, or keep it under the zero-force rule.
 
     Zero-force rule: the corner switched already since the last accepted
@@ -343,14 +364,14 @@ def ts_corner_transition(side, slot, hold, t, y, par, disc, hdr, smp, met,
     cannot resolve anyway; a held corner that switches does so beyond
     eps_f, by the ordinary rule, and every hold ends with the next accepted
     step.  So the rule changes no motion beyond a force error of 2 eps_f."""
-    d, dd = corner_compression(y, side, par)
+    d, dd = corner_compression(y, iq, side, par)
     f = par[P_KV] * d + par[P_CV] * dd
     if disc[hold] != 0 and d > 0.0:
         was = disc[slot]
         disc[slot] = 0
-        _f, fdot = ts_force_rate(side, t, y, par, disc, hdr, smp)
+        _f, fdot = ts_force_rate(accel, iq, side, t, y, par, disc, hdr, smp)
         disc[slot] = was
-        if abs(f) <= ts_force_resolution(t, y, side, fdot, par):
+        if abs(f) <= ts_force_resolution(t, y, iq, side, fdot, par):
             disc[hold] = HELD
             if (fdot > 0.0) == (was != 0):
                 return RUNNING
@@ -362,9 +383,10 @@ def ts_corner_transition(side, slot, hold, t, y, par, disc, hdr, smp, met,
         disc[slot] = 0
         ts_set_mode(disc)
         if disc[D_MODE] == MODE_FLIGHT:
-            log_event(log, cnt, t, EV_FLIGHT, y[3], y[3], y[2], side)
+            log_event(log, cnt, t, EV_FLIGHT, y[iq + 1], y[iq + 1], y[iq],
+                      side)
         else:
-            mark_uplift(t, y[2], y[3], disc[D_PIVOT], met, log, cnt)
+            mark_uplift(t, y[iq], y[iq + 1], disc[D_PIVOT], met, log, cnt)
         return RUNNING
     disc[slot] = 1
     ts_set_mode(disc)
@@ -372,31 +394,40 @@ def ts_corner_transition(side, slot, hold, t, y, par, disc, hdr, smp, met,
         # landed from above: the analogue of a Housner impact
         met[M_IMPACTS] += 1
         met[M_T_LAST_IMPACT] = t
-        log_event(log, cnt, t, EV_IMPACT, y[3], y[3], y[2], side)
+        log_event(log, cnt, t, EV_IMPACT, y[iq + 1], y[iq + 1], y[iq], side)
     else:
-        log_event(log, cnt, t, EV_CONTACT, y[3], y[3], y[2], side)
+        log_event(log, cnt, t, EV_CONTACT, y[iq + 1], y[iq + 1], y[iq], side)
+    return RUNNING
+
+
+@jit_generic
+def ts_shared_transition(accel, iq, k, t, y, par, disc, hdr, smp, opt, met,
+                         log, cnt):
+    """Transitions of the events of ts_shared_event (time booked already)."""
+    if k == TS_RIGHT:
+        return ts_corner_transition(accel, iq, 1.0, D_RIGHT, D_HOLD_RIGHT, t,
+                                    y, par, disc, hdr, smp, met, log, cnt)
+    if k == TS_LEFT:
+        return ts_corner_transition(accel, iq, -1.0, D_LEFT, D_HOLD_LEFT, t,
+                                    y, par, disc, hdr, smp, met, log, cnt)
+    if k == TS_CROSS:
+        cross_transition(y, iq, disc, opt)
+        return RUNNING
+    if k == TS_OVERTURN:
+        return overturned(t, y[iq], y[iq + 1], disc[D_PIVOT], met, log, cnt)
+    observe_rotation(k - TS_PEAK, t, y[iq], y[iq + 1], disc, par, met, log,
+                     cnt)
     return RUNNING
 
 
 @jit
 def ts_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     book_time(t, disc, met)
-    if k == TS_RIGHT:
-        return ts_corner_transition(1.0, D_RIGHT, D_HOLD_RIGHT, t, y, par,
-                                    disc, hdr, smp, met, log, cnt)
-    if k == TS_LEFT:
-        return ts_corner_transition(-1.0, D_LEFT, D_HOLD_LEFT, t, y, par,
-                                    disc, hdr, smp, met, log, cnt)
-    if k == TS_CROSS:
-        cross_transition(y, 2, disc, opt)
-        return RUNNING
-    if k == TS_OVERTURN:
-        return overturned(t, y[2], y[3], disc[D_PIVOT], met, log, cnt)
     if k == TS_REST:
         ts_set_rest(y, par)
         return RUNNING
-    observe_rotation(k - TS_PEAK, t, y[2], y[3], disc, par, met, log, cnt)
-    return RUNNING
+    return ts_shared_transition(ts_accelerations, TS_IQ, k, t, y, par, disc,
+                                hdr, smp, opt, met, log, cnt)
 
 
 @jit
@@ -520,8 +551,8 @@ def ts_cannot_overturn(y, par, met):
     q = y[2]
     if not abs(q) < alpha:
         return False
-    dR, _ = corner_compression(y, 1, par)
-    dL, _ = corner_compression(y, -1, par)
+    dR, _ = corner_compression(y, TS_IQ, 1, par)
+    dL, _ = corner_compression(y, TS_IQ, -1, par)
     spring = 0.5 * k * (max(dR, 0.0) ** 2 + max(dL, 0.0) ** 2)
     E = ts_kinetic(y, par) + M * g * (y[0] + h * math.cos(q)) + spring
     Mg = M * g
@@ -560,28 +591,33 @@ def ts_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
 
 
 @jit
-def ts_initial_contact(y, side, par):
-    d, dd = corner_compression(y, side, par)
+def ts_initial_contact(y, iq, side, par):
+    d, dd = corner_compression(y, iq, side, par)
     if d >= 0.0 and par[P_KV] * d + par[P_CV] * dd > 0.0:
         return 1
     return 0
 
 
 @jit
-def ts_init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
+def ts_init_corners(t0, y, iq, par, disc, met):
     """Corner states from the initial y: a corner is in contact iff
     delta >= 0 and k_v delta + c_v delta' > 0."""
     init_metrics(t0, met)
     for i in range(N_DISC):
         disc[i] = 0
-    disc[D_RIGHT] = ts_initial_contact(y, 1.0, par)
-    disc[D_LEFT] = ts_initial_contact(y, -1.0, par)
+    disc[D_RIGHT] = ts_initial_contact(y, iq, 1.0, par)
+    disc[D_LEFT] = ts_initial_contact(y, iq, -1.0, par)
     ts_set_mode(disc)
-    init_side(y[2], y[3], disc)
+    init_side(y[iq], y[iq + 1], disc)
     if disc[D_MODE] != MODE_REST:
         met[M_T_UPLIFT] = t0
-    init_pass_alpha(t0, y[2], par, met)
-    track_rotation(y[2], met)
+    init_pass_alpha(t0, y[iq], par, met)
+    track_rotation(y[iq], met)
+
+
+@jit
+def ts_init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
+    ts_init_corners(t0, y, TS_IQ, par, disc, met)
 
 
 @jit

@@ -50,3 +50,15 @@ def test_each_listed_scene_is_refused_with_a_reason(body, kw, says):
     with pytest.raises(ValueError, match=None) as exc:
         fr.simulate(body, PULSE, **kw)
     assert says in str(exc.value)
+
+
+def test_sliding_on_the_two_spring_foundation_runs_and_the_others_say_where_it_does():
+    """Friction on a flexible foundation runs on TwoSpringFoundation (two_spring_friction); on the
+    SDOF foundation models the refusal names the one that takes it."""
+    two = fr.TwoSpringFoundation(1e4)
+    assert registry.select(BLOCK, friction=fr.Friction(0.5), foundation=two).name == "two_spring_friction"
+    assert registry.select(ASYM, friction=fr.Friction(0.5), foundation=two).name == "two_spring_friction"
+    for fnd in (FND, fr.SwitchingFoundation(1e4)):
+        for fric in (fr.Friction(0.5), fr.Friction(0.5, lift_off="flight")):
+            with pytest.raises(ValueError, match="TwoSpringFoundation only"):
+                registry.select(BLOCK, friction=fric, foundation=fnd)

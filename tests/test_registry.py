@@ -30,6 +30,10 @@ FLEX = FlexibleBody(0.2, 2.0, 10.0)
     (BLOCK, {"foundation": LinearVibration(1e5)}, "linear_sdof"),
     (BLOCK, {"wall": Wall(gap=0.01), "friction": Friction(0.4)}, "contact"),
     (BLOCK, {"friction": Friction(math.inf, lift_off="flight")}, "contact"),
+    (BLOCK, {"foundation": TwoSpringFoundation(1e5), "friction": Friction(0.3)}, "two_spring_friction"),
+    (BLOCK, {"foundation": TwoSpringFoundation(1e5), "friction": Friction(0.3, lift_off="flight")},
+     "two_spring_friction"),
+    (BLOCK, {"foundation": TwoSpringFoundation(1e5), "friction": Friction(math.inf)}, "two_spring"),
 ])
 def test_a_scene_selects_exactly_its_model(body, kw, name):
     spec = registry.select(body, **kw)
@@ -37,7 +41,7 @@ def test_a_scene_selects_exactly_its_model(body, kw, name):
     model = registry.MODELS[name]
     assert spec.model is model
     assert spec.n_state == len(model.state_names) and model.state_names[spec.theta_index] == "theta"
-    assert spec.friction == (name in ("rigid_friction", "flexible_friction", "contact"))
+    assert spec.friction == (name in ("rigid_friction", "flexible_friction", "contact", "two_spring_friction"))
     assert spec.flexible == isinstance(body, FlexibleBody)
 
 
@@ -46,7 +50,7 @@ def test_every_entry_names_its_kernels_and_columns():
     assert set(registry.MODELS) == {"rigid", "rigid_body", "rigid_wall", "rigid_friction", "contact", "contact_body",
                                     "flexible",
                                     "flexible_friction", "flexible_wall", "flexible_flight", "two_spring", "switching", "wall_body",
-                                    "linear_sdof"}
+                                    "linear_sdof", "two_spring_friction"}
     for m in registry.MODELS.values():
         mod = m.load()
         assert callable(getattr(mod, m.simulate_entry)) and callable(getattr(mod, m.sweep_entry))
@@ -74,7 +78,9 @@ def test_cli_and_toml_know_every_option_an_entry_names():
     (FLEX, {"wall": Wall(gap=0.01), "friction": Friction(0.4)}, "RigidBlock only"),
     (FLEX, {"wall": Wall(gap=0.0)}, "Hogan's one-sided rocking"),
     (FLEX, {"foundation": LinearVibration(1e5)}, "RigidBlock only"),
-    (BLOCK, {"foundation": LinearVibration(1e5), "friction": Friction(0.3)}, "holds? the base horizontally"),
+    (BLOCK, {"foundation": LinearVibration(1e5), "friction": Friction(0.3)}, "on TwoSpringFoundation only"),
+    (BLOCK, {"foundation": TwoSpringFoundation(1e5), "friction": Friction(math.inf, lift_off="flight")},
+     "never slips"),
     (BLOCK, {"foundation": "stiff"}, "foundation must be"),
     (BLOCK, {"wall": 0.01}, "wall must be a fastrock.Wall"),
     ("block", {}, "body must be a fastrock body"),

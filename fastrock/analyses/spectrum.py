@@ -156,7 +156,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         ratios and the physical values (amplitude_g, frequency_hz).
     wall : Wall, optional
     friction : Friction, optional
-        Adds the outcome "slide" and the columns max_slide, residual_slide [m].
+        Adds the outcome "slide" and the columns max_slide, residual_slide [m]
+        (with a TwoSpringFoundation too: the base slides on the corner springs).
     foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration, optional
         The block stands on a flexible foundation instead of rigid ground
         (``body`` a RigidBlock with b and h); every run starts at rest in
@@ -275,7 +276,8 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     opt = solver.options(0.0, early_exit)
     if foundation is not None:
         from fastrock.model.foundation import block_inertia
-        y0 = np.asarray(foundation.initial_state(block_inertia(body, mass), 0.0, 0.0, ground), float)
+        from fastrock.running.foundation import with_slide
+        y0 = with_slide(spec, foundation.initial_state(block_inertia(body, mass), 0.0, 0.0, ground))
     else:
         y0 = np.zeros(spec.n_state)
         if ground is not None:

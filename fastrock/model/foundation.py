@@ -580,3 +580,20 @@ def foundation_par(body, foundation, mass=None):
     return par
 
 
+def foundation_friction_par(body, foundation, friction, mass=None):
+    """Parameter vector of a block sliding on the two-spring foundation (registry ``build_par``
+    of two_spring_friction): :func:`foundation_par`'s, then mu_s, mu_k."""
+    from fastrock.kernels.layout import N_PAR_FOUNDATION
+    if not isinstance(foundation, TwoSpringFoundation):
+        raise ValueError(f"friction= on a flexible foundation needs foundation=TwoSpringFoundation, got "
+                         f"{type(foundation).__name__}")
+    if not math.isfinite(friction.mu_s):
+        raise ValueError("friction: mu_s must be finite on a flexible foundation (Friction(inf) is no "
+                         f"effect there), got mu_s={friction.mu_s}")
+    par = np.zeros(N_PAR_FOUNDATION + 2)
+    par[:N_PAR_FOUNDATION] = foundation_par(body, foundation, mass)
+    par[N_PAR_FOUNDATION] = friction.mu_s
+    par[N_PAR_FOUNDATION + 1] = friction.mu_k
+    return par
+
+

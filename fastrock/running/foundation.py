@@ -10,7 +10,8 @@ from fastrock.model import excitation as X
 from fastrock.model.bodies import RigidBlock
 from fastrock.model.rigid_body import RigidBody
 from fastrock.running.outcomes import checked_stable_step, outcome_of, status_of, warn_budget, warn_unstable
-from fastrock.running.result import SimulationResult, ground_at, events_frame, metrics_dict, run_inputs
+from fastrock.running.result import (SimulationResult, events_frame, friction_metrics, ground_at, metrics_dict,
+                                     run_inputs)
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
 from fastrock.running.sweep import call_kernel
 from fastrock.kernels import layout as L
@@ -20,17 +21,25 @@ from fastrock.model.ground import as_ground
 
 
 #: Contact names of the history's ``contact`` column, by kernel mode.
-CONTACT_NAMES = {L.MODE_REST: "contact", L.MODE_ROCK: "rock", L.MODE_FLIGHT: "flight"}
+CONTACT_NAMES = {L.MODE_REST: "contact", L.MODE_ROCK: "rock", L.MODE_FLIGHT: "flight",
+                 L.MODE_SLIDE: "slide", L.MODE_SLIDE_ROCK: "slide-rock"}
 
 
 
-def foundation_spec(body, foundation, mass=None):
+def foundation_spec(body, foundation, mass=None, friction=None):
     """KernelSpec (registry entry, parameter vector) and the block's mass properties."""
     from fastrock.running.registry import select
     if not isinstance(body, (RigidBlock, RigidBody)):
         raise ValueError(f"foundation models carry a RigidBlock or RigidBody, got {type(body).__name__}")
-    spec = select(body, foundation=foundation, mass=mass)
+    spec = select(body, friction=friction, foundation=foundation, mass=mass)
     return spec, block_inertia(body, mass)
+
+
+def with_slide(spec, y0):
+    """The foundation's initial state, with (d, d') = (0, 0) appended for a sliding model: the
+    base starts at rest where it stands."""
+    y0 = np.asarray(y0, float)
+    return np.concatenate([y0, np.zeros(2)]) if spec.friction else y0
 
 
 # ------------------------------------------------------------------------- simulation
@@ -67,7 +76,7 @@ def _check_release(body, theta0, allow_overturn):
 
 
 def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertical=None,
-                        theta0=0.0, dtheta0=0.0, duration=None, t_after=DEFAULT_T_AFTER,
+                        friction=None, theta0=0.0, dtheta0=0.0, duration=None, t_after=DEFAULT_T_AFTER,
                         t_eval=None, solver=None, rtol=None, atol=None, dt=None,
                         max_steps=None, allow_overturn=False, history_capacity=None, ground=None,
                         early_exit=False):
@@ -82,6 +91,11 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
     foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration
     excitation, vertical : Pulse, SampledMotion or GroundMotion, optional
         Horizontal and vertical ground acceleration (None: free motion).
+    friction : Friction, optional
+        Coulomb friction at the base (TwoSpringFoundation only; None or mu_s = inf: the base
+        is held horizontally). The base point below the centre of mass then sticks or slides
+        (the two_spring_friction model, docs: theory/foundation_friction), and the block
+        flies, horizontally too, while no corner touches, whatever ``lift_off`` says.
     mass : float, optional
         Block mass ``M`` [kg] of a RigidBlock (default 1); a RigidBody carries its own mass and
         inertia (a different ``mass`` is refused).
@@ -105,7 +119,9 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
         block while it rocks, 0 in full contact), ``lift_off`` (bool, contact != "contact");
         two-spring only: ``y`` [m] (vertical displacement of the base centre; of the base
         point below the centre of mass for an asymmetric body), ``y_dot``
-        [m/s], ``force_right``, ``force_left`` [N] (corner forces). At every event the history
+        [m/s], ``force_right``, ``force_left`` [N] (corner forces); with friction ``d``,
+        ``d_dot`` [m, m/s] (the base point's slide relative to the ground), and ``contact``
+        also "slide" / "slide-rock" (slipping on both corners / on one). At every event the history
         holds two rows with the same ``t`` (before and after the transition); zero crossings
         of ``theta`` are events, so the history holds them exactly.
         ``metrics`` as for :func:`fastrock.simulate`, with ``impacts`` = re-contacts after a
@@ -122,14 +138,14 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
     vertical = X.as_excitation(vertical, "vertical")
     theta0 = V.finite("theta0", theta0)
     dtheta0 = V.finite("dtheta0", dtheta0)
-    spec, blk = foundation_spec(body, foundation, mass)
+    spec, blk = foundation_spec(body, foundation, mass, friction)
     ground = as_ground(ground)
     if ground is not None:
         ground.check_scene(body, foundation=foundation)
     _check_release(body, theta0, V.boolean("allow_overturn", allow_overturn))
     hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
                                         history_capacity, solver, V.boolean("early_exit", early_exit), ground)
-    y0 = foundation.initial_state(blk, theta0, dtheta0, ground)
+    y0 = with_slide(spec, foundation.initial_state(blk, theta0, dtheta0, ground))
     code, t, Y, D, lg, met, cnt = integrate_foundation(spec, y0, hdr, smp, opt, te, cap)
     if solver.dt:
         checked = None
@@ -148,10 +164,10 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
         "t": t, "a_g": ag, "a_v": av, "theta": th, "theta_dot": Y[:, it + 1],
         "theta_ratio": th / body.alpha,
         "contact": [CONTACT_NAMES.get(int(m), str(m)) for m in mode],
-        "pivot": np.where(mode == L.MODE_ROCK, D[:, L.D_PIVOT], 0),
-        "lift_off": mode != L.MODE_REST,
+        "pivot": np.where((mode == L.MODE_ROCK) | (mode == L.MODE_SLIDE_ROCK), D[:, L.D_PIVOT], 0),
+        "lift_off": (mode != L.MODE_REST) & (mode != L.MODE_SLIDE),
     }
-    if spec.name == "two_spring":
+    if spec.name in ("two_spring", "two_spring_friction"):
         cols["y"] = Y[:, 0]
         cols["y_dot"] = Y[:, 1]
         for side, slot, name in ((1.0, D_RIGHT, "force_right"), (-1.0, D_LEFT, "force_left")):
@@ -165,9 +181,19 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
     metrics = metrics_dict(met, body)
     metrics["time_rock"] = float(met[L.M_T_ROCK])
     metrics["time_contact"] = float(met[L.M_T_CONTACT])
+    outcome = outcome_of(code)
+    if spec.friction:
+        cols_d = {"d": Y[:, spec.slide_index], "d_dot": Y[:, spec.slide_index + 1]}
+        history = history.assign(**cols_d)
+        metrics.update({k: float(v[0]) for k, v in friction_metrics(met[None, :]).items()})
+        metrics["stick_slip"] = int(metrics["stick_slip"])
+        if outcome == "safe" and abs(metrics["residual_slide"]) > friction.slide_tolerance:
+            outcome = "slide"
     effects = (f"foundation:{foundation.model}",) + (("vertical",) if vertical is not None
                                                      else ())
-    return SimulationResult(history=history, events=events, outcome=outcome_of(code),
+    if spec.friction:
+        effects = effects + ("friction",)
+    return SimulationResult(history=history, events=events, outcome=outcome,
                             status=status_of(code), status_code=code, metrics=metrics,
                             kernel=spec.name, body=body, excitation=excitation,
                             effects=effects, vertical=vertical)

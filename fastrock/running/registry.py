@@ -147,8 +147,18 @@ NOT_AVAILABLE = {
     ("rigid", frozenset({"foundation", "wall"})):
         "a wall beside a block on a flexible foundation is not available yet (issue #13)",
     ("rigid", frozenset({"foundation", "friction"})):
-        "sliding on a flexible foundation is not available yet: the foundation models hold the "
-        "base horizontally (issue #13)",
+        "sliding on a flexible foundation is available on TwoSpringFoundation only "
+        "(two_spring_friction); the switching and linear SDOF models turn the block about its "
+        "base centre, held horizontally (issue #13)",
+    ("rigid", frozenset({"foundation", "friction", "flight"})):
+        "sliding on a flexible foundation is available on TwoSpringFoundation only "
+        "(two_spring_friction); the switching and linear SDOF models turn the block about its "
+        "base centre, held horizontally (issue #13)",
+    ("rigid", frozenset({"foundation", "flight"})):
+        "Friction(inf, lift_off='flight') on a flexible foundation is not available: a base that "
+        "never slips would need an impulsive stick at a landing with a horizontal velocity; give a "
+        "finite mu_s (TwoSpringFoundation: the block flies when no corner touches) or omit friction "
+        "(the foundation models hold the base horizontally)",
     ("rigid", frozenset({"foundation", "wall", "friction"})):
         "a wall and friction on a flexible foundation are not available yet (issue #13)",
 }
@@ -331,6 +341,11 @@ def _foundation(body, fx, mass):
     return foundation_par(body, fx["foundation"], mass)
 
 
+def _foundation_friction(body, fx, mass):
+    from fastrock.model.foundation import foundation_friction_par
+    return foundation_friction_par(body, fx["foundation"], fx.get("friction") or fx.get("flight"), mass)
+
+
 _RIGID_CLI = ("--alpha", "--p", "--b", "--h", "--e")
 _RIGID_TOML = ("body",)
 _FLEX_CLI = ("--omega-n-over-p", "--zeta", "--base-mass-ratio")
@@ -444,3 +459,20 @@ for _name, _states, _what in (
 # an asymmetric RigidBody (level base) stands on the two-spring foundation in the same kernel: its
 # corners at -b1 and b2 (kernels/foundation.py); the SDOF models refuse it (lookup says why)
 _BY_SCENE[("rigid_body", frozenset({"foundation:two_spring"}))] = MODELS["two_spring"]
+# the block slides (and flies when no corner touches) whatever Friction.lift_off says, so
+# lift_off="flight" runs the same kernel
+register(Model(
+    "two_spring_friction", "foundation_friction", "rigid",
+    frozenset({"foundation:two_spring", "friction"}),
+    ("y", "y_dot", "theta", "theta_dot", "d", "d_dot"), _foundation_friction,
+    columns=_FOUNDATION_COLUMNS + _FRICTION_COLUMNS,
+    outcomes=("safe", "slide", "mode1", "mode2", "failed"),
+    cli_options=_RIGID_CLI + ("--foundation", "--foundation-omega", "--foundation-zeta", "--mass")
+    + _FRICTION_CLI,
+    toml_keys=("body", "foundation", "friction"),
+    summary="rigid block on two tensionless corner spring-dashpots whose base slides (Coulomb friction "
+            "at the base point): stick, slip, rocking, free flight when no corner touches",
+    also=(frozenset({"foundation:two_spring", "friction", "flight"}),)))
+for _fx in (frozenset({"foundation:two_spring", "friction"}),
+            frozenset({"foundation:two_spring", "friction", "flight"})):
+    _BY_SCENE[("rigid_body", _fx)] = MODELS["two_spring_friction"]

@@ -82,7 +82,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         One-sided rocking against a rear wall.
     friction : Friction, optional
         Coulomb friction (sliding and slide-rocking); None or mu_s = inf:
-        no sliding degree of freedom at all.
+        no sliding degree of freedom at all.  With a TwoSpringFoundation the
+        base slides on the corner springs (model two_spring_friction).
     foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration, optional
         A flexible foundation under a RigidBlock or RigidBody (rocking against
         vibration; an asymmetric body on TwoSpringFoundation only);
@@ -138,7 +139,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
     vertical = X.match_components(excitation, vertical, resample_vertical)
     if foundation is not None:
         from fastrock.running.foundation import simulate_foundation
-        return simulate_foundation(body, foundation, excitation, mass=mass, vertical=vertical, theta0=theta0,
+        return simulate_foundation(body, foundation, excitation, mass=mass, vertical=vertical, friction=friction,
+                                   theta0=theta0,
                                    dtheta0=dtheta0, duration=duration, t_after=t_after, t_eval=t_eval,
                                    solver=make_solver(solver, rtol, atol, dt, **kw), allow_overturn=True,
                                    history_capacity=history_capacity, ground=ground, early_exit=early_exit)

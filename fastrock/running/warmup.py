@@ -44,6 +44,8 @@ def _example(name):
         "two_spring": (block, {"foundation": TwoSpringFoundation.from_vibration(block, 30.0, 0.05)}),
         "switching": (block, {"foundation": SwitchingFoundation.from_vibration(block, 30.0, 0.05)}),
         "linear_sdof": (block, {"foundation": LinearVibration(10.0, 0.1)}),
+        "two_spring_friction": (block, {"foundation": TwoSpringFoundation.from_vibration(block, 30.0, 0.05),
+                                        "friction": Friction(0.3)}),
     }[name]
 
 
@@ -62,7 +64,8 @@ def warm_model(name):
     y0 = np.zeros(spec.n_state)
     if "foundation" in effects:
         from fastrock.model.foundation import block_inertia
-        y0 = effects["foundation"].initial_state(block_inertia(body, 1.0), 0.0, 0.0)
+        from fastrock.running.foundation import with_slide
+        y0 = with_slide(spec, effects["foundation"].initial_state(block_inertia(body, 1.0), 0.0, 0.0))
     hdr, smp = X.to_header(body, Pulse(3.0, 2.0, amplitude_unit="g_tan_alpha"))
     opt = Solver().options(0.5, False)
     y = y0.copy()
@@ -108,7 +111,7 @@ def is_ready(kernel):
 #: guide/install, "Compilation and the kernel cache"); a quiet machine takes about two thirds of it.
 TYPICAL_COMPILE_SECONDS = {"rigid": 34, "rigid_body": 27, "rigid_wall": 31, "wall_body": 31, "rigid_friction": 33, "contact": 67, "contact_body": 67,
                            "flexible": 31, "flexible_friction": 43, "flexible_wall": 40, "flexible_flight": 52, "two_spring": 30, "switching": 30,
-                           "linear_sdof": 29}
+                           "linear_sdof": 29, "two_spring_friction": 37}
 
 
 def compile_notice(name, kernel=None):
