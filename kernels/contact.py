@@ -600,7 +600,7 @@ def solve_targets(y, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
     sticking: REST is a static phase, never solved here).  ``tgt2`` is the
     target of the wall contact's normal row (impulse form: the post-impact
     normal velocity -e_w v_n-; acceleration form: ``wall_normal_rate``'s
-    term, for a short wall).  The geometry is that of the state y (theta =
+    term, for a short wall or a rounded top).  The geometry is that of the state y (theta =
     y[0]; a short wall's contact also moves with the position).  The wall
     contact is the top corner or a short wall's edge (st2 = CS_FREE,
     CS_TOP_*: ``wall_geom``) or the wall-side base corner (st2 =

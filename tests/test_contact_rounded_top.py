@@ -48,16 +48,22 @@ def _geometry(body, wall):
     return body.b, body.h, body.h, body.top_radius
 
 
+def _arc_centre(row, body, wall):
+    """World position of the arc's centre C and of the centre of mass G for one history row."""
+    bw, h, ht, rho = _geometry(body, wall)
+    th, x, z = row["theta"], row["d"], row["z"]
+    gx, gy = x + h * math.sin(th), z + h * math.cos(th)
+    a, c = wall.side * (bw - rho), ht - rho               # C in the body frame
+    return gx + a * math.cos(th) + c * math.sin(th), gy - a * math.sin(th) + c * math.cos(th), gx, gy
+
+
 def _arc_distance(row, body, wall):
     """Distance from the arc's centre C to the wall (its face, or its top edge E when C is above
     it) minus rho, and the wall-side base corner's clear gap, for one history row."""
     bw, h, ht, rho = _geometry(body, wall)
     w = wall.side
-    th, x, z = row["theta"], row["d"], row["z"]
-    gx, gy = x + h * math.sin(th), z + h * math.cos(th)
-    a, c = w * (bw - rho), ht - rho                       # C in the body frame
-    cx = gx + a * math.cos(th) + c * math.sin(th)
-    cy = gy - a * math.sin(th) + c * math.cos(th)
+    th = row["theta"]
+    cx, cy, gx, gy = _arc_centre(row, body, wall)
     face = w * (bw + wall.gap)                            # the wall's face: x = w (b_w + d)
     if wall.height is not None and cy > wall.height:
         arc = math.hypot(face - cx, wall.height - cy) - rho
@@ -349,3 +355,52 @@ def test_wall_row_is_the_gaps_second_derivative(wall):
     assert C.WG_CORNER in kinds
     if wall.height is not None:
         assert C.WG_VERTEX in kinds and C.WG_EDGE in kinds
+
+
+# --------------------------------------------------------------------- leaning on an edge, gap 0
+@pytest.mark.parametrize("side", [1, -1])
+@pytest.mark.parametrize("mu, mu_w", [(math.inf, 0.0), (0.6, 0.0), (0.6, 0.4), (0.2, 0.0), (0.2, 0.4)])
+def test_leans_on_a_short_walls_edge_with_its_arc(side, mu, mu_w):
+    """Released at rest past alpha toward a short wall whose edge meets the arc past alpha
+    (theta_w = 0.347 > alpha = 0.291): both models end leaning; the contact model's block
+    rests with the arc on the edge (|C - E| = rho to 1e-9 m at the end, the arc's closed contact
+    held by the mode solve with the curvature term), having bounced on it, in flight too."""
+    wall = fr.Wall(0.6, side=side, height=1.66, restitution=0.5, friction=mu_w)
+    assert wall.limit_angle(BLOCK) > BLOCK.alpha
+    theta0 = side * (BLOCK.alpha + 0.02)
+    ref = fr.simulate(BLOCK, None, wall=dataclasses.replace(wall, friction=0.0), theta0=theta0, solver=TIGHT,
+                      duration=6.0)
+    run = fr.simulate(BLOCK, None, wall=wall, friction=fr.Friction(mu, lift_off="flight"), theta0=theta0,
+                      solver=TIGHT, duration=6.0)
+    assert ref.outcome == run.outcome == "leaning", (ref.status, run.status)
+    assert run.metrics["wall_impacts"] > 1 and "wall-rest" in set(run.events.event)
+    last = run.history.iloc[-1]
+    arc, _base = _arc_distance(last, BLOCK, wall)
+    assert abs(arc) < 1e-9 and last.theta_dot == 0.0
+    # E on the arc, not on the face or the top: E - C in the body frame points up and out
+    cx, cy, _gx, _gy = _arc_centre(last, BLOCK, wall)
+    ex, ey = side * (B + wall.gap) - cx, wall.height - cy
+    th = last.theta
+    assert side * (ex * math.cos(th) - ey * math.sin(th)) > 0.0 and ex * math.sin(th) + ey * math.cos(th) > 0.0
+
+
+@pytest.mark.parametrize("side", [1, -1])
+def test_gap_zero_equals_the_wall_model(side):
+    """Gap 0 (the face on the wall at rest: Hogan's one-sided rocking in the wall model, the
+    arc never reaching the wall first): with a pivot that never slips and no flight, the runs
+    of tests/test_contact_gap0.py's oracle (status, impact counts, max rotation to 1e-6)."""
+    wall = fr.Wall(0.0, side=side, restitution=0.8)
+    checked = 0
+    for sign in (1, -1):
+        for amp, freq in ((1.2, 1.0), (1.5, 2.0), (2.5, 3.0)):
+            p = _pulse(amp, freq, sign)
+            ref = fr.simulate(BLOCK, p, wall=wall, duration=8.0)
+            run = fr.simulate(BLOCK, p, wall=wall, friction=NEVER_SLIPS, duration=8.0)
+            if run.metrics["flights"]:
+                continue
+            assert run.status == ref.status
+            assert run.metrics["wall_impacts"] == ref.metrics["wall_impacts"]
+            assert run.metrics["impacts"] == ref.metrics["impacts"]
+            assert run.metrics["max_rotation"] == pytest.approx(ref.metrics["max_rotation"], rel=1e-6)
+            checked += 1
+    assert checked >= 4
