@@ -86,8 +86,9 @@ def _wall_contacts(run, body, wall):
 
 # --------------------------------------------------------------------- the wall model's runs
 WALLS = [fr.Wall(0.05, restitution=0.8), fr.Wall(0.2, restitution=1.0),
-         fr.Wall(0.5, height=1.7, restitution=0.8),        # a short wall whose edge meets the arc
-         fr.Wall(0.2, height=1.4, restitution=0.8)]        # ... and one whose edge meets the face
+         fr.Wall(0.5, height=1.7, restitution=0.8),        # a short wall whose edge meets the block's arc
+         fr.Wall(0.2, height=1.4, restitution=0.8),        # ... and one whose edge meets the face
+         fr.Wall(0.6, height=1.85, restitution=0.8)]       # the edge on the arc of both bodies
 AMPS, FREQS = np.array([1.2, 1.5, 2.0, 3.0]), np.array([1.0, 2.0, 3.0])
 
 
@@ -98,7 +99,7 @@ def _pulse(amp, freq, sign):
 
 @pytest.mark.parametrize("body", [BLOCK, RBODY], ids=["block", "body"])
 @pytest.mark.parametrize("side", [1, -1])
-@pytest.mark.parametrize("wall", WALLS, ids=["tall-0.05", "tall-0.2", "short-arc", "short-face"])
+@pytest.mark.parametrize("wall", WALLS, ids=["tall-0.05", "tall-0.2", "short-arc", "short-face", "short-arc-2"])
 def test_never_slipping_no_flight_equals_the_wall_model(body, side, wall):
     """On the cells where the contact model's body never flies, run to the end, the wall model and
     the contact model are the same physics: outcomes and impact counts equal, max rotations to
@@ -120,7 +121,7 @@ def test_never_slipping_no_flight_equals_the_wall_model(body, side, wall):
 
 @pytest.mark.parametrize("body", [BLOCK, RBODY], ids=["block", "body"])
 @pytest.mark.parametrize("side", [1, -1])
-@pytest.mark.parametrize("wall", WALLS, ids=["tall-0.05", "tall-0.2", "short-arc", "short-face"])
+@pytest.mark.parametrize("wall", WALLS, ids=["tall-0.05", "tall-0.2", "short-arc", "short-face", "short-arc-2"])
 def test_first_wall_impact_at_the_rounded_contact_angle(body, side, wall):
     """The first wall impact: at theta = w theta_w (Wall.limit_angle, the arc's closed form), at the
     wall model's time; the recorded state puts C at rho from the wall (or, on the face branch of
