@@ -16,7 +16,10 @@ to the centre of mass (CM):
        beside a wall lower than it (par[C_H_WALL] > 0), the body's point
        nearest the wall's top edge E, a fixed point: on the wall-side face
        (E against the face, whose normal turns with the body), the top face
-       or the top corner (``wall_geom``), so it moves over the body
+       or the top corner (``wall_geom``), so it moves over the body; a
+       rounded top corner (par[C_TOP_R] = rho > 0): the arc's point
+       nearest the wall, its centre C fixed in the body (``body_point``,
+       ``arc_front``; docs: theory/wall)
 
 Body-frame (a, c) maps to world (a cos th + c sin th, -a sin th + c cos th)
 (physics.md 0).  Gravity is the vector (0, -G), G = g + a_v, written in one
@@ -145,6 +148,8 @@ Parameters (``par``, N_PAR entries)
  22  C_ALPHA_NEG rad, alpha of the left pivot
  23  C_H_WALL    m, height of a wall lower than the wall-side top corner
                  (0: a tall wall)
+ 24  C_TOP_R     m, radius rho of a rounded wall-side top corner (0: the
+                 square corner)
 A friction parameter vector (kernels/friction.py) extended to N_PAR with
 C_B2 = Q_B, C_H2 = Q_H, C_E_NEG = P_E, C_ALPHA_NEG = P_ALPHA is a valid
 contact parameter vector.
@@ -190,7 +195,7 @@ from .rigid import (P_ALPHA, P_E, P_E_W, P_G, P_THETA_OVER, P_WALL_SIDE,
 
 # ---- parameters and flight metrics: kernels/layout.py ----------------------
 from .layout import (C_ALPHA_NEG, C_B1, C_B2, C_E_NEG, C_GAP, C_H1, C_H_WALL,  # noqa: E402,F401
-                     C_H2, C_HT1, C_HT2, C_IG, C_MU_K, C_MU_S, C_MU_W,
+                     C_H2, C_HT1, C_HT2, C_IG, C_MU_K, C_MU_S, C_MU_W, C_TOP_R,
                      M_MAX_JUMP, M_N_FLIGHTS,
                      M_T_FLIGHT, N_PAR_CONTACT as N_PAR)
 N_STATE = 6
@@ -268,7 +273,9 @@ EDGE = 3
 @jit
 def body_point(k, par):
     """Body-frame coordinates of contact point k relative to the CM
-    (k = K_NEAR: the wall-side base corner, as a wall contact)."""
+    (k = K_NEAR: the wall-side base corner, as a wall contact; k = 2: the
+    wall-side top corner, or the centre of a rounded one's arc,
+    (w (b_w - rho), ht_w - rho), rho = par[C_TOP_R])."""
     if k == 0:
         return -par[C_B1], -par[C_H1]
     if k == 1:
@@ -277,9 +284,11 @@ def body_point(k, par):
         if par[P_WALL_SIDE] > 0.0:
             return par[C_B2], -par[C_H2]
         return -par[C_B1], -par[C_H1]
+    # the wall-side top corner, or a rounded one's arc centre
+    rho = par[C_TOP_R]
     if par[P_WALL_SIDE] > 0.0:
-        return par[C_B2], par[C_HT2]
-    return -par[C_B1], par[C_HT1]
+        return par[C_B2] - rho, par[C_HT2] - rho
+    return -(par[C_B1] - rho), par[C_HT1] - rho
 
 
 @jit
@@ -326,6 +335,21 @@ def short_wall(par):
 
 
 @jit
+def arc_front(th, par):
+    """World offset from ``body_point(2)`` to the body's point farthest
+    toward the wall near the top: the front point (w rho, 0) of a rounded
+    corner's arc while the horizontal lies within the arc's normals (the
+    body turned toward the wall, w theta >= 0: rolling is True, the point
+    moves over the arc), else the straight face's top end, body-fixed.
+    0 for the square corner (rho = 0)."""
+    rho = par[C_TOP_R]
+    w = par[P_WALL_SIDE]
+    if w * th >= 0.0:
+        return w * rho, 0.0, rho > 0.0
+    return w * rho * math.cos(th), -w * rho * math.sin(th), False
+
+
+@jit
 def wall_geom(y, par):
     """The wall contact (k = 2) in state y: (gap, rx, ry, nx, ny, tx, ty,
     kind), r the world vector from the CM to the body's contact point, n
@@ -341,16 +365,26 @@ def wall_geom(y, par):
     (WG_VERTEX, gap their distance).  Inside the body the nearer of the
     face and the top: the gap is E's signed distance to the body near
     them, continuous, so a crossing, or a pass through the body inside one
-    flight step (a minimum), is located."""
+    flight step (a minimum), is located.
+
+    A rounded top corner (radius rho = par[C_TOP_R] > 0, centre C =
+    ``body_point(2)``; docs: theory/wall): the face ends at ht_w - rho and
+    the top face at b_w - rho; against the wall's face (WG_CORNER) the gap
+    is C's minus rho and the contact point the arc's front point
+    (``arc_front``); against E (WG_VERTEX) the gap is |C - E| - rho, n along
+    C - E and the contact point C - rho n.  rho = 0 is the square corner
+    bit for bit."""
     th = y[0]
     w = par[P_WALL_SIDE]
     bw = par[C_B2] if w > 0.0 else par[C_B1]
     rx, ry = point_offset(2, th, par)
+    fx, fy, _rolling = arc_front(th, par)
     hm = hmid(par)
     gx = y[2] + hm * math.sin(th)
     if not short_wall(par):
-        return bw + par[C_GAP] - w * (gx + rx), rx, ry, -w, 0.0, 0.0, 1.0, \
-            WG_CORNER
+        return bw + par[C_GAP] - w * (gx + rx + fx), rx + fx, ry + fy, \
+            -w, 0.0, 0.0, 1.0, WG_CORNER
+    rho = par[C_TOP_R]
     gy = y[4] + hm * math.cos(th)
     ex = w * (bw + par[C_GAP]) - gx
     ey = par[C_H_WALL] - gy
@@ -361,26 +395,28 @@ def wall_geom(y, par):
     ht = par[C_HT2] if w > 0.0 else par[C_HT1]
     # E's coordinate across the face, toward the wall side
     u = w * (c * ex - sn * ey)
-    if cE <= ht and u - bw >= cE - ht:
+    if cE <= ht - rho and u - bw >= cE - ht:
         # face point Q = b_w n_f + cE t_f, n_f = (w c, -w sn), t_f = (sn, c)
         qx = w * bw * c + cE * sn
         qy = -w * bw * sn + cE * c
         return u - bw, qx, qy, -w * c, w * sn, sn, c, WG_EDGE
-    if u <= bw:
+    if u <= bw - rho:
         # above the top face (the body over the wall), or inside the body
         # nearer the top than the face: E against the top face
         qx = u * w * c + ht * sn
         qy = -u * w * sn + ht * c
         return cE - ht, qx, qy, -sn, -c, -w * c, w * sn, WG_TOP
-    if gy + ry <= par[C_H_WALL]:
-        return bw + par[C_GAP] - w * (gx + rx), rx, ry, -w, 0.0, 0.0, 1.0, \
-            WG_CORNER
+    # E past the corner (the arc's centre) along and across the face
+    if gy + ry + fy <= par[C_H_WALL]:
+        return bw + par[C_GAP] - w * (gx + rx + fx), rx + fx, ry + fy, \
+            -w, 0.0, 0.0, 1.0, WG_CORNER
     dx = rx - ex
     dy = ry - ey
     dist = math.hypot(dx, dy)
     nx = dx / dist
     ny = dy / dist
-    return dist, rx, ry, nx, ny, w * ny, -w * nx, WG_VERTEX
+    return dist - rho, rx - rho * nx, ry - rho * ny, nx, ny, w * ny, \
+        -w * nx, WG_VERTEX
 
 
 @jit
@@ -429,14 +465,27 @@ def wall_normal_rate(y, par):
     row): 2 n'.v, n' = theta' (n_y, -n_x) for a normal fixed in the body
     (E on the face or on the top), 0 for the corner on the wall's face;
     for the corner on E (|v_t|^2 / gap, infinite at contact) 0: that
-    contact is an impact only."""
-    if not short_wall(par):
+    contact is an impact only.  A rounded top's arc (docs: theory/wall):
+    the gap follows the centre C, whose acceleration differs from the
+    contact point's by the centripetal rho theta'^2 along n: -rho
+    theta'^2 on the wall's face while the contact point rolls over the arc;
+    on E the curvature term (t.v_C)^2 / |C - E| - rho theta'^2, finite."""
+    rho = par[C_TOP_R]
+    if not short_wall(par) and rho == 0.0:
         return 0.0
-    _g, rx, ry, nx, ny, _tx, _ty, kind = wall_geom(y, par)
-    if kind != WG_EDGE and kind != WG_TOP:
-        return 0.0
-    vgx, vgy = cm_velocity(y, par)
+    g, rx, ry, nx, ny, tx, ty, kind = wall_geom(y, par)
     om = y[1]
+    if kind == WG_CORNER:
+        _fx, _fy, rolling = arc_front(y[0], par)
+        return -rho * om * om if rolling else 0.0
+    vgx, vgy = cm_velocity(y, par)
+    if kind == WG_VERTEX:
+        if rho == 0.0:
+            return 0.0
+        cx = rx + rho * nx
+        cy = ry + rho * ny
+        vt = tx * (vgx + om * cy) + ty * (vgy - om * cx)
+        return vt * vt / (g + rho) - rho * om * om
     return 2.0 * om * (ny * (vgx + om * ry) - nx * (vgy - om * rx))
 
 
@@ -551,7 +600,7 @@ def solve_targets(y, b0x, b0y, b0w, om2, par, st0, st1, st2, tgt2, out):
     sticking: REST is a static phase, never solved here).  ``tgt2`` is the
     target of the wall contact's normal row (impulse form: the post-impact
     normal velocity -e_w v_n-; acceleration form: ``wall_normal_rate``'s
-    term, for a short wall).  The geometry is that of the state y (theta =
+    term, for a short wall or a rounded top).  The geometry is that of the state y (theta =
     y[0]; a short wall's contact also moves with the position).  The wall
     contact is the top corner or a short wall's edge (st2 = CS_FREE,
     CS_TOP_*: ``wall_geom``) or the wall-side base corner (st2 =

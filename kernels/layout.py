@@ -267,7 +267,8 @@ C_HT2 = 20          # m, height of the top-right corner above the CM
 C_E_NEG = 21        # ground restitution of an impact from pivot -1 onto +1
 C_ALPHA_NEG = 22    # rad, alpha of the left pivot (-1)
 C_H_WALL = 23       # m, height of a wall lower than the wall-side top corner (0: a tall wall)
-N_PAR_CONTACT = 24
+C_TOP_R = 24        # m, radius rho of a rounded wall-side top corner (0: the square corner)
+N_PAR_CONTACT = 25
 LIFT_OFF_FLIGHT = 2   # Friction(lift_off="flight"): the contact model flies
 
 # metrics of free flight, in slots the other rigid models leave free

@@ -87,14 +87,22 @@ def test_simulate_scene_and_bad_input(tmp_path):
             fr.simulate(overhang, None, wall=fr.Wall(0.05, side=1), duration=1.0)
 
 
-def test_a_rounded_top_runs_the_wall_model_and_is_refused_by_the_contact_model():
-    """A rounded top touches the wall with its arc (the wall model, tests/test_wall_rounded_top.py);
-    the contact model's wall contact point is the square corner, so it refuses the rounded top
-    rather than using that corner silently."""
+def test_a_rounded_top_runs_the_wall_model_and_the_contact_model():
+    """A rounded top touches the wall with its arc in both models (the wall model:
+    tests/test_wall_rounded_top.py; the contact model: tests/test_contact_rounded_top.py), which
+    catch the body at the arc's contact angle."""
     import dataclasses
     rounded = dataclasses.replace(BODY, top="rounded", top_radius=0.2)
     fr.simulate(rounded, None, theta0=0.01, duration=0.5)                 # without a wall it runs
-    run = fr.simulate(rounded, None, wall=fr.Wall(0.05, side=1), duration=0.5)
+    wall = fr.Wall(0.05, side=1)
+    pulse = fr.Pulse(1.3 * math.tan(BODY.alpha2), 1.0, sign=-1)          # toward the wall
+    run = fr.simulate(rounded, pulse, wall=wall, rtol=1e-10, duration=2.0)
     assert run.kernel == "wall_body"
-    with pytest.raises(ValueError, match="rounded top"):
-        fr.simulate(rounded, None, wall=fr.Wall(0.05, side=1), friction=NEVER_SLIPS, duration=0.5)
+    contact = fr.simulate(rounded, pulse, wall=wall, friction=NEVER_SLIPS, rtol=1e-10, duration=2.0)
+    assert contact.kernel == "contact_body"
+    for r in (run, contact):
+        hits = r.events[r.events.event == "wall-impact"]
+        assert hits.theta.iloc[0] == pytest.approx(wall.limit_angle(rounded), abs=1e-9)
+    with pytest.raises(ValueError, match="top_radius"):                # the arc must fit on the face
+        fr.simulate(dataclasses.replace(BODY, top="rounded", top_radius=5.0), None, wall=wall,
+                    friction=NEVER_SLIPS, duration=0.5)

@@ -70,7 +70,8 @@ class RigidBody:
         Top profile for wall contact: "flat" (default: the top corner of
         the wall-side face touches the wall) or "rounded" (with
         ``top_radius`` [m]: the top corner on the wall side is a quarter
-        circle, which touches a wall later; the wall model only).
+        circle, which touches a wall later; in the wall model and the
+        contact model).
     top_radius : float, optional
     outline : array, shape (n, 2), optional
         The body's outline relative to the centre of mass [m], for

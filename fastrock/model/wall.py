@@ -74,7 +74,10 @@ class Wall:
     A rounded top (``RigidBlock(top_radius=...)``, ``RigidBody(top="rounded",
     top_radius=...)``: the top corner on the wall side is a quarter circle of
     radius rho) touches the wall with its arc, later than the flat top's
-    corner would (:meth:`limit_angle`); the impact map is the same.
+    corner would (:meth:`limit_angle`); the impact map is the same.  The
+    contact model (``friction=``, flight) takes it too: the arc rests,
+    rolls, slides on and strikes the wall's face or a short wall's top
+    edge (docs: theory/wall).
 
     Examples
     --------
@@ -141,6 +144,13 @@ class Wall:
             raise ValueError(f"top_radius = {rho:.6g} m is larger than the height of the body's face toward the "
                              f"wall ({face:.6g} m): the rounded corner must fit on that face")
         return float(rho)
+
+    def top_radius(self, body):
+        """Radius rho [m] of the body's rounded top corner on the wall side, checked against the
+        height of its face toward the wall (0: a flat top)."""
+        if getattr(body, "top_radius", None) is None:
+            return 0.0
+        return self._top_radius(body, self._face_height(body))
 
     def _geometry(self, body):
         """(branch, theta_w) of :meth:`contact` and :meth:`limit_angle`."""

@@ -157,7 +157,8 @@ def contact_par(body, friction, wall=None):
     """Parameters of the contact model (kernels/contact.py): a RigidBlock, or an asymmetric
     RigidBody on a level base, whose base corners touch the ground with ``friction`` (mu_s may be
     inf), and a wall (its Coulomb coefficient ``wall.friction``, 0: frictionless), tall or lower than
-    the body's wall-side top corner (its top edge touched by the body's face)."""
+    the body's wall-side top corner (its top edge touched by the body's face), the top corner on the
+    wall side square or rounded (``top_radius``: the arc's radius in C_TOP_R)."""
     from fastrock.kernels import layout as K
     from fastrock.model.rigid_body import RigidBody
     par = np.zeros(K.N_PAR_CONTACT)
@@ -186,6 +187,8 @@ def contact_par(body, friction, wall=None):
         par[K.P_E_W] = wall.restitution
         par[K.C_GAP] = wall.gap
         par[K.C_MU_W] = wall.friction
+        # a rounded wall-side top corner (0: the square corner); its radius fits the wall-side face
+        par[K.C_TOP_R] = wall.top_radius(body)
     return par
 
 

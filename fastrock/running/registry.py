@@ -330,9 +330,6 @@ def _flexible_flight(body, fx, mass):
 
 def _contact(body, fx, mass):
     from fastrock.running.models import contact_par
-    if getattr(body, "top_radius", None) is not None and fx.get("wall") is not None:
-        raise ValueError("wall: a rounded top (top_radius) is not in the contact model yet (its wall contact "
-                         "point is the square top corner); run it without friction and flight (the wall model)")
     return contact_par(body, fx.get("friction") or fx.get("flight"), fx.get("wall"))
 
 
