@@ -198,6 +198,10 @@ def test_small_motion_frequencies_are_the_linearised_eigenvalues(mode):
     lam, vec = np.linalg.eig(np.linalg.solve(Mm[1:, 1:], K[1:, 1:]))
     order = np.argsort(lam)
     omega = math.sqrt(lam[order[mode]])
+    # the front end's closed form of the same eigenvalues (and the vertical mode)
+    w_vert, *w_pair = FND.flexible_frequencies(BODY)
+    assert w_pair[mode] == pytest.approx(omega, rel=1e-12)
+    assert w_vert == pytest.approx(math.sqrt(K[0, 0] / Mm[0, 0]), rel=1e-12)
     shape = vec[:, order[mode]] / vec[1, order[mode]]          # (u/q, 1)
     q0 = 0.02 * FND.uplift_rotation(BODY)                       # well inside full contact
     y0 = [-blk.M * blk.g / (2 * FND.k_v), 0.0, shape[0] * q0, 0.0, q0, 0.0]

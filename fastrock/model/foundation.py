@@ -410,6 +410,27 @@ class TwoSpringFoundation:
             return om, c_t / (2.0 * blk.I_C * om)
         return _vibration_of(blk, k_t, c_t, True)
 
+    def flexible_frequencies(self, body):
+        """Undamped small-motion frequencies [rad/s] of a :class:`FlexibleBody` at rest on both
+        corners: ``(vertical, lower, upper)``, the vertical mode ``sqrt(2 k_v / (m + m_b))`` and
+        the two coupled modes of column and rocking, the eigenvalues of ``K phi = w^2 M phi``
+        with ``M = [[m, m H], [m H, m H^2 + m_b h_b^2 + I_m + I_b]]`` and
+        ``K = [[m w_n^2, -m g], [-m g, 2 k_v B^2 - m g H - m_b g h_b]]`` (docs:
+        theory/foundation_flexible); NaN for a mode that is not stable.  ``vibration`` and
+        ``from_vibration`` use the body with its column locked instead."""
+        if not isinstance(body, FlexibleBody):
+            raise ValueError(f"body must be a FlexibleBody (a rigid body's rocking frequency is vibration()), "
+                             f"got {type(body).__name__}")
+        f = flexible_inertia(body)
+        g = f.g
+        m11, m12, m22 = f.m, f.m * f.H, f.m * f.H ** 2 + f.m_b * f.h_b ** 2 + f.I_m + f.I_b
+        k11, k12 = f.m * f.wn ** 2, -f.m * g
+        k22 = 2.0 * self.k_v * f.b ** 2 - f.m * g * f.H - f.m_b * g * f.h_b
+        lam = np.sort(np.linalg.eigvals(np.linalg.solve(np.array([[m11, m12], [m12, m22]]),
+                                                       np.array([[k11, k12], [k12, k22]]))).real)
+        w = [math.sqrt(v) if v > 0.0 else float("nan") for v in lam]
+        return math.sqrt(2.0 * self.k_v / f.M), w[0], w[1]
+
     def uplift_rotation(self, body, mass=None):
         """Static lift-off rotation ``theta_y = M g / (2 k_v b)`` [rad] (small angles)."""
         blk = block_inertia(body, mass)
