@@ -470,10 +470,14 @@ class TwoSpringFoundation:
                 raise ValueError(f"slope = {ground.slope:.6g} rad: at its static tilt {q:.4g} rad the block's "
                                  "uphill corner leaves its spring: it cannot rest on this foundation")
             return np.array([-d_s, 0.0, q, 0.0], float)
+        return np.array([self._release_height(blk, theta0), 0.0, theta0, dtheta0], float)
+
+    def _release_height(self, blk, theta0):
+        """y_c of a symmetric body released at theta0 in vertical equilibrium: both corners
+        share the weight if they both touch, else the lower corner carries it alone."""
         d_s = blk.M * blk.g / (2 * self.k_v)
         lift = blk.b * math.sin(abs(theta0))
-        yc = -d_s if lift <= d_s else lift - 2 * d_s
-        return np.array([yc, 0.0, theta0, dtheta0], float)
+        return -d_s if lift <= d_s else lift - 2 * d_s
 
     def _flexible_initial_state(self, blk, theta0, dtheta0, ground):
         """(y_c, y_c', u, u', q, q') of a FlexibleBody: the rigid block's vertical equilibrium
@@ -482,10 +486,7 @@ class TwoSpringFoundation:
         if _on_slope(ground):
             raise ValueError(f"slope = {ground.slope:.6g} rad: a FlexibleBody on a foundation runs on level "
                              "ground only (its static equilibrium on a slope is not modelled yet)")
-        d_s = blk.M * blk.g / (2 * self.k_v)
-        lift = blk.b * math.sin(abs(theta0))
-        yc = -d_s if lift <= d_s else lift - 2 * d_s
-        return np.array([yc, 0.0, 0.0, 0.0, theta0, dtheta0], float)
+        return np.array([self._release_height(blk, theta0), 0.0, 0.0, 0.0, theta0, dtheta0], float)
 
     def _body_initial_state(self, blk, theta0, dtheta0, ground):
         """initial_state of an asymmetric body (corners at x_s = s b + c, c = blk.skew)."""

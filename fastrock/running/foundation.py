@@ -179,8 +179,8 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
         metrics.update({k: v[0].item() for k, v in flexible_metrics(met[None, :], body).items()})
     metrics["time_rock"] = float(met[L.M_T_ROCK])
     metrics["time_contact"] = float(met[L.M_T_CONTACT])
-    effects = (f"foundation:{foundation.model}",) + (("vertical",) if vertical is not None
-                                                     else ())
+    effects = (("flexible",) if spec.flexible else ()) + (f"foundation:{foundation.model}",) + \
+        (("vertical",) if vertical is not None else ())
     return SimulationResult(history=history, events=events, outcome=outcome_of(code),
                             status=status_of(code), status_code=code, metrics=metrics,
                             kernel=spec.name, body=body, excitation=excitation,
