@@ -53,13 +53,12 @@ from .excitation import ground
 from .flexible import track_u
 from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT,
                          TS_CROSS, TS_LEFT, TS_OVERTURN, TS_PASS_ALPHA,
-                         TS_PEAK, TS_RIGHT, corner_force, never_static,
-                         ts_init_corners, ts_shared_event,
+                         TS_PEAK, TS_RIGHT, corner_arm, corner_force,
+                         never_static, ts_init_corners, ts_shared_event,
                          ts_shared_transition)
 from .hybrid import book_time, final_status, integrate_hybrid, sweep_rows
-from .layout import (N_DISC, O_T0, P_B_SKEW, P_G, PF_H, PF_HB, PF_IB, PF_IM,
-                     PF_M, PF_MB, PF_WN, PF_ZETA, RUNNING)
-from .foundation import corner_arm
+from .layout import (N_DISC, O_T0, P_G, PF_H, PF_HB, PF_IB, PF_IM, PF_M,
+                     PF_MB, PF_WN, PF_ZETA, RUNNING)
 from .rigid import track_rotation
 
 from .layout import N_PAR_FOUNDATION_FLEXIBLE as N_PAR  # noqa: E402,F401
@@ -159,28 +158,6 @@ def ff_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     if at_end:
         return final_status(disc, met)
     return RUNNING
-
-
-@jit
-def ff_kinetic(y, par):
-    """Kinetic energy [J] (module docstring's mass matrix)."""
-    m = par[PF_M]
-    mb = par[PF_MB]
-    H = par[PF_H]
-    hb = par[PF_HB]
-    u = y[2]
-    c = math.cos(y[4])
-    s = math.sin(y[4])
-    dy = y[1]
-    du = y[3]
-    dq = y[5]
-    # mass velocity (u' c + Y q', y' - u' s - X q'), base CM (h_b c q', y' - h_b s q')
-    vx = du * c + (H * c - u * s) * dq
-    vy = dy - du * s - (u * c + H * s) * dq
-    bx = hb * c * dq
-    by = dy - hb * s * dq
-    return 0.5 * (m * (vx * vx + vy * vy) + mb * (bx * bx + by * by)
-                  + (par[PF_IM] + par[PF_IB]) * dq * dq)
 
 
 @jit
