@@ -247,6 +247,19 @@ P_B_SKEW = 22       # m, c = (b2 - b1)/2: base centre right of the point below t
 P_ALPHA_LEFT = 23   # rad, alpha of the left corner's side (theta < 0; P_ALPHA if symmetric)
 N_PAR_FOUNDATION = 24
 
+# flexible body on the two-spring foundation (kernels.foundation_flexible): the
+# two-spring vector of the body with its column locked (P_MASS = m + m_b, P_H
+# and P_I_G of the locked body, P_B = B), then the column and the base, SI
+PF_M = 24           # kg, the column's mass m
+PF_H = 25           # m, its height H above the base
+PF_WN = 26          # rad/s, omega_n = sqrt(K/m)
+PF_ZETA = 27        # -, column damping ratio
+PF_IM = 28          # kg m^2, I_m (rotates with the base)
+PF_MB = 29          # kg, base mass m_b (> 0)
+PF_IB = 30          # kg m^2, base inertia about its own centre of mass
+PF_HB = 31          # m, base CM height h_b
+N_PAR_FOUNDATION_FLEXIBLE = 32
+
 # planar rigid body with contact points (kernels.contact), after the rigid
 # entries (P_WALL_SIDE and P_E_W as the wall model); the first five share the
 # friction model's indices, so a friction vector padded with C_B2 = Q_B,

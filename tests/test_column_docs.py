@@ -34,6 +34,7 @@ SCENES = {
     "flexible_friction": (FLEX, {"friction": fr.Friction(0.5)}),
     "foundation": (BLOCK, {"foundation": TwoSpringFoundation.from_vibration(BLOCK, 40.0, 0.05, mass=50.0),
                            "mass": 50.0}),
+    "flexible_foundation": (FLEX, {"foundation": TwoSpringFoundation.from_vibration(FLEX, 40.0, 0.05)}),
 }
 
 

@@ -53,6 +53,9 @@ PROBE = textwrap.dedent("""
     elif case == "two-spring":
         block = fr.RigidBlock.rectangle(0.2, 1.0)
         sc = Scene(block, pulse, foundation=fr.TwoSpringFoundation.from_vibration(block, 60.0, 0.05))
+    elif case == "flexible-two-spring":
+        flex = fr.FlexibleBody(0.2, 2.0, 9.0, 0.05)
+        sc = Scene(flex, pulse, foundation=fr.TwoSpringFoundation.from_vibration(flex, 60.0, 0.05))
     r = sc.run(duration=3.0)
     report.update(kernel=r.kernel, scene_kernel=sc.kernel, effects=list(sc.effects),
                   compiled=compiled(),
@@ -73,10 +76,13 @@ EXPECTED = {
     "flight": ("contact", ["flight"], "contact_simulate"),
     "vertical": ("rigid", ["vertical"], "rigid_simulate"),
     "two-spring": ("two_spring", ["foundation:two-spring"], "two_spring_simulate"),
+    "flexible-two-spring": ("flexible_two_spring", ["flexible", "foundation:two-spring"],
+                            "flexible_two_spring_simulate"),
 }
 MODEL_MODULES = {"fastrock.kernels.rigid", "fastrock.kernels.flexible", "fastrock.kernels.friction",
                  "fastrock.kernels.wall", "fastrock.kernels.foundation", "fastrock.kernels.flexible_friction",
-                 "fastrock.kernels.flexible_wall", "fastrock.kernels.contact"}
+                 "fastrock.kernels.flexible_wall", "fastrock.kernels.contact",
+                 "fastrock.kernels.foundation_flexible"}
 
 
 def probe(case, tmp_path):
@@ -110,5 +116,8 @@ def test_scene_runs_and_compiles_only_its_kernel(case, tmp_path):
                                 "fastrock.kernels.flexible_wall"},
               # the contact model reuses the friction model's impact maps (Routh, corner impact)
               "contact": {"fastrock.kernels.rigid", "fastrock.kernels.friction", "fastrock.kernels.contact"},
-              "two_spring": {"fastrock.kernels.rigid", "fastrock.kernels.foundation"}}[kernel]
+              "two_spring": {"fastrock.kernels.rigid", "fastrock.kernels.foundation"},
+              # the two-spring pieces and the flexible body's deflection tracking (track_u)
+              "flexible_two_spring": {"fastrock.kernels.rigid", "fastrock.kernels.flexible",
+                                      "fastrock.kernels.foundation", "fastrock.kernels.foundation_flexible"}}[kernel]
     assert set(rep["modules"]) & MODEL_MODULES == needed

@@ -28,6 +28,7 @@ FLEX = FlexibleBody(0.2, 2.0, 10.0)
     (BLOCK, {"foundation": TwoSpringFoundation(1e6, 1e3)}, "two_spring"),
     (BLOCK, {"foundation": SwitchingFoundation(1e5)}, "switching"),
     (BLOCK, {"foundation": LinearVibration(1e5)}, "linear_sdof"),
+    (FLEX, {"foundation": TwoSpringFoundation(1e6, 1e3)}, "flexible_two_spring"),
     (BLOCK, {"wall": Wall(gap=0.01), "friction": Friction(0.4)}, "contact"),
     (BLOCK, {"friction": Friction(math.inf, lift_off="flight")}, "contact"),
     (BLOCK, {"foundation": TwoSpringFoundation(1e5), "friction": Friction(0.3)}, "two_spring_friction"),
@@ -50,7 +51,7 @@ def test_every_entry_names_its_kernels_and_columns():
     assert set(registry.MODELS) == {"rigid", "rigid_body", "rigid_wall", "rigid_friction", "contact", "contact_body",
                                     "flexible",
                                     "flexible_friction", "flexible_wall", "flexible_flight", "two_spring", "switching", "wall_body",
-                                    "linear_sdof", "two_spring_friction"}
+                                    "linear_sdof", "two_spring_friction", "flexible_two_spring"}
     for m in registry.MODELS.values():
         mod = m.load()
         assert callable(getattr(mod, m.simulate_entry)) and callable(getattr(mod, m.sweep_entry))
@@ -77,7 +78,7 @@ def test_cli_and_toml_know_every_option_an_entry_names():
 @pytest.mark.parametrize("body,kw,match", [
     (FLEX, {"wall": Wall(gap=0.01), "friction": Friction(0.4)}, "RigidBlock only"),
     (FLEX, {"wall": Wall(gap=0.0)}, "Hogan's one-sided rocking"),
-    (FLEX, {"foundation": LinearVibration(1e5)}, "RigidBlock only"),
+    (FLEX, {"foundation": LinearVibration(1e5)}, "stands on foundation=TwoSpringFoundation"),
     (BLOCK, {"foundation": LinearVibration(1e5), "friction": Friction(0.3)}, "on TwoSpringFoundation only"),
     (BLOCK, {"foundation": TwoSpringFoundation(1e5), "friction": Friction(math.inf, lift_off="flight")},
      "never slips"),

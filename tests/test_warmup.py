@@ -14,7 +14,8 @@ from fastrock.running.warmup import TYPICAL_COMPILE_SECONDS, resolve
 def test_every_model_has_a_warm_up_scene_and_a_typical_time():
     assert resolve(None) == list(registry.MODELS)
     assert set(TYPICAL_COMPILE_SECONDS) >= set(registry.MODELS)
-    assert resolve(["foundation", "wall"]) == ["two_spring", "switching", "linear_sdof", "rigid_wall"]
+    assert resolve(["foundation", "wall"]) == ["two_spring", "switching", "linear_sdof", "flexible_two_spring",
+                                               "rigid_wall"]
     with pytest.raises(ValueError, match="unknown model 'walls'"):
         resolve(["walls"])
 

@@ -56,8 +56,10 @@ def _body(args):
     if getattr(args, "omega_n_over_p", None) is not None:
         if args.b is not None or args.h is not None:
             raise ValueError("--omega-n-over-p (flexible body) takes --alpha and --p, not --b/--h")
+        # --mass is the column's mass m (it matters on a foundation, whose stiffnesses are absolute)
         return FlexibleBody(alpha=args.alpha, p=args.p, omega_n_over_p=args.omega_n_over_p, zeta=args.zeta,
-                            base_mass_ratio=args.base_mass_ratio)
+                            base_mass_ratio=args.base_mass_ratio,
+                            mass=1.0 if getattr(args, "mass", None) is None else args.mass)
     if args.b is not None or args.h is not None:
         if args.b is None or args.h is None:
             raise ValueError("give both --b and --h (half-width and half-height, m)")
@@ -146,7 +148,7 @@ def _add_body_options(p):
                     help="ground inclination phi [rad], descending toward +x (default 0, level)")
     gr.add_argument("--slope-direction", default="horizontal", choices=("horizontal", "slope"),
                     help="the excitation acts horizontally (default) or along the slope [-]")
-    fd = p.add_argument_group("flexible foundation (rigid block with --b/--h)")
+    fd = p.add_argument_group("flexible foundation (rigid block with --b/--h; a flexible body on two-spring)")
     fd.add_argument("--foundation", choices=("two-spring", "switching", "linear"),
                     help="stand the block on a flexible foundation (default: rigid ground)")
     fd.add_argument("--foundation-omega", type=float,

@@ -47,12 +47,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from fastrock import _validate as V
-from fastrock.model.bodies import RigidBlock
+from fastrock.model.bodies import DEFAULT_BASE_MASS_RATIO, FlexibleBody, RigidBlock
 from fastrock.model.rigid_body import RigidBody, level_base_height
 # the kernels' parameter layout (kernels/layout.py imports no kernel)
 from fastrock.kernels.layout import (N_PAR_FOUNDATION as N_PAR, P_ALPHA_LEFT, P_B, P_B_SKEW, P_CT,
                                      P_CV, P_EF, P_H, P_I_0, P_I_C, P_I_G, P_KT, P_KV, P_MASS,
-                                     P_THETA_Y)
+                                     P_THETA_Y, N_PAR_FOUNDATION_FLEXIBLE, PF_H, PF_HB, PF_IB, PF_IM,
+                                     PF_M, PF_MB, PF_WN, PF_ZETA)
 
 # discrete-state slots of the two-spring model (kept here as plain ints, checked against the
 # kernel in the tests)
@@ -91,8 +92,10 @@ class BlockInertia:
 
 
 def carried_mass(body, mass=None):
-    """The mass [kg] a foundation carries: a :class:`RigidBody`'s own ``mass``, and for a
-    :class:`RigidBlock` (which has no mass) ``mass``, default 1 kg.
+    """The mass [kg] a foundation carries: a :class:`RigidBody`'s own ``mass``, a
+    :class:`FlexibleBody`'s column mass ``mass`` (its base adds ``base_mass_ratio`` of it,
+    :func:`flexible_inertia`), and for a :class:`RigidBlock` (which has no mass) ``mass``,
+    default 1 kg.
 
     Raises
     ------
@@ -101,11 +104,12 @@ def carried_mass(body, mass=None):
         the body's own mass (the foundation's stiffnesses are absolute: a second mass would
         silently change the response).
     """
-    if isinstance(body, RigidBody):
+    if isinstance(body, (RigidBody, FlexibleBody)):
         own = float(body.mass)
+        name = type(body).__name__
         if mass is not None and not math.isclose(V.positive("mass", mass), own, rel_tol=1e-12):
-            raise ValueError(f"mass = {mass!r} kg differs from the RigidBody's own mass {own!r} kg: "
-                             f"a RigidBody carries its own mass onto a foundation (leave mass unset)")
+            raise ValueError(f"mass = {mass!r} kg differs from the {name}'s own mass {own!r} kg: "
+                             f"a {name} carries its own mass onto a foundation (leave mass unset)")
         return own
     return 1.0 if mass is None else V.positive("mass", mass)
 
@@ -125,6 +129,8 @@ def block_inertia(body, mass=None):
         :class:`RigidBody` with a level base, or its ``p`` implies ``I_0 < M R^2``.
     """
     mass = carried_mass(body, mass)
+    if isinstance(body, FlexibleBody):
+        return flexible_inertia(body, mass)
     if isinstance(body, RigidBody):
         if body.is_symmetric:
             body = body.to_block()
@@ -148,6 +154,58 @@ def block_inertia(body, mass=None):
                          f"(p must be <= sqrt(g/R) = {math.sqrt(g / R)})")
     I_G = max(I_G, 0.0)
     return BlockInertia(M=M, b=b, h=h, R=R, I_0=I0, I_G=I_G, I_C=I_G + M * h * h, g=g)
+
+
+@dataclass(frozen=True)
+class FlexibleInertia(BlockInertia):
+    """A :class:`FlexibleBody` on a foundation: the :class:`BlockInertia` of the body with its
+    column locked (u = 0; ``M = m + m_b``, ``h`` its centre of mass, ``b = B``), which the
+    rigid-block formulas of the foundations use (:meth:`TwoSpringFoundation.from_vibration`,
+    ``rotational``, ``uplift_rotation``), plus the column and the base in SI units: ``m`` [kg],
+    ``H`` [m], ``wn`` [rad/s], ``zeta``, ``I_m``, ``I_b`` [kg m^2], ``m_b`` [kg], ``h_b`` [m]."""
+
+    m: float = 0.0
+    H: float = 0.0
+    wn: float = 0.0
+    zeta: float = 0.0
+    I_m: float = 0.0
+    m_b: float = 0.0
+    I_b: float = 0.0
+    h_b: float = 0.0
+
+
+def flexible_inertia(body, mass=None):
+    """:class:`FlexibleInertia` of a :class:`FlexibleBody` (column mass ``body.mass``).
+
+    The base mass is ``base_mass_ratio`` times m, default ``DEFAULT_BASE_MASS_RATIO`` (0.1):
+    on the springs the base moves vertically and turns with the column, and a massless base
+    would leave three coordinates moving one point mass (a singular mass matrix), as with
+    sliding; ``I_b = m_b B^2 / 3`` about its own centre of mass, as on rigid ground.
+
+    Raises
+    ------
+    ValueError
+        Naming ``base_mass_ratio`` if it is 0.
+    """
+    m = carried_mass(body, mass)
+    ratio = DEFAULT_BASE_MASS_RATIO if body.base_mass_ratio is None else body.base_mass_ratio
+    if not ratio > 0.0:
+        raise ValueError(f"base_mass_ratio = {body.base_mass_ratio!r}: a FlexibleBody on a foundation needs a "
+                         f"base mass (> 0; default {DEFAULT_BASE_MASS_RATIO} when unset): the base moves on the "
+                         "springs, and a massless one leaves the equations of motion singular")
+    B, H, g = body.B, body.H, float(body.g)
+    m_b = ratio * m
+    I_b = m_b * B * B / 3.0
+    I_m = body.rotary_inertia_ratio * m * body.R0 ** 2
+    h_b = float(body.base_cm_height)
+    M = m + m_b
+    h = (m * H + m_b * h_b) / M
+    I_C = m * H * H + I_m + m_b * h_b * h_b + I_b
+    I_G = I_C - M * h * h
+    R = math.hypot(B, h)
+    return FlexibleInertia(M=M, b=B, h=h, R=R, I_0=I_G + M * R * R, I_G=I_G, I_C=I_C, g=g,
+                           m=m, H=H, wn=body.omega_n, zeta=float(body.zeta), I_m=I_m, m_b=m_b, I_b=I_b,
+                           h_b=h_b)
 
 
 def _body_inertia(body, mass):
@@ -352,6 +410,27 @@ class TwoSpringFoundation:
             return om, c_t / (2.0 * blk.I_C * om)
         return _vibration_of(blk, k_t, c_t, True)
 
+    def flexible_frequencies(self, body):
+        """Undamped small-motion frequencies [rad/s] of a :class:`FlexibleBody` at rest on both
+        corners: ``(vertical, lower, upper)``, the vertical mode ``sqrt(2 k_v / (m + m_b))`` and
+        the two coupled modes of column and rocking, the eigenvalues of ``K phi = w^2 M phi``
+        with ``M = [[m, m H], [m H, m H^2 + m_b h_b^2 + I_m + I_b]]`` and
+        ``K = [[m w_n^2, -m g], [-m g, 2 k_v B^2 - m g H - m_b g h_b]]`` (docs:
+        theory/foundation_flexible); NaN for a mode that is not stable.  ``vibration`` and
+        ``from_vibration`` use the body with its column locked instead."""
+        if not isinstance(body, FlexibleBody):
+            raise ValueError(f"body must be a FlexibleBody (a rigid body's rocking frequency is vibration()), "
+                             f"got {type(body).__name__}")
+        f = flexible_inertia(body)
+        g = f.g
+        m11, m12, m22 = f.m, f.m * f.H, f.m * f.H ** 2 + f.m_b * f.h_b ** 2 + f.I_m + f.I_b
+        k11, k12 = f.m * f.wn ** 2, -f.m * g
+        k22 = 2.0 * self.k_v * f.b ** 2 - f.m * g * f.H - f.m_b * g * f.h_b
+        lam = np.sort(np.linalg.eigvals(np.linalg.solve(np.array([[m11, m12], [m12, m22]]),
+                                                       np.array([[k11, k12], [k12, k22]]))).real)
+        w = [math.sqrt(v) if v > 0.0 else float("nan") for v in lam]
+        return math.sqrt(2.0 * self.k_v / f.M), w[0], w[1]
+
     def uplift_rotation(self, body, mass=None):
         """Static lift-off rotation ``theta_y = M g / (2 k_v b)`` [rad] (small angles)."""
         blk = block_inertia(body, mass)
@@ -378,6 +457,8 @@ class TwoSpringFoundation:
         ``cos(q) (2 k_v b^2 sin(q) + c M G) = M g h sin(q + phi)`` (G = g cos(phi); toward its
         nearer corner) and ``y_c = c sin(q) - M G / (2 k_v)``; any other release starts in
         vertical equilibrium at theta0."""
+        if isinstance(blk, FlexibleInertia):
+            return self._flexible_initial_state(blk, theta0, dtheta0, ground)
         if blk.skew != 0.0:
             return self._body_initial_state(blk, theta0, dtheta0, ground)
         if _on_slope(ground):
@@ -389,10 +470,23 @@ class TwoSpringFoundation:
                 raise ValueError(f"slope = {ground.slope:.6g} rad: at its static tilt {q:.4g} rad the block's "
                                  "uphill corner leaves its spring: it cannot rest on this foundation")
             return np.array([-d_s, 0.0, q, 0.0], float)
+        return np.array([self._release_height(blk, theta0), 0.0, theta0, dtheta0], float)
+
+    def _release_height(self, blk, theta0):
+        """y_c of a symmetric body released at theta0 in vertical equilibrium: both corners
+        share the weight if they both touch, else the lower corner carries it alone."""
         d_s = blk.M * blk.g / (2 * self.k_v)
         lift = blk.b * math.sin(abs(theta0))
-        yc = -d_s if lift <= d_s else lift - 2 * d_s
-        return np.array([yc, 0.0, theta0, dtheta0], float)
+        return -d_s if lift <= d_s else lift - 2 * d_s
+
+    def _flexible_initial_state(self, blk, theta0, dtheta0, ground):
+        """(y_c, y_c', u, u', q, q') of a FlexibleBody: the rigid block's vertical equilibrium
+        (:meth:`initial_state`) with the column undeflected, u = u' = 0 (at rest upright this is
+        the static equilibrium, y_c = -(m + m_b) g / (2 k_v)).  Level ground only."""
+        if _on_slope(ground):
+            raise ValueError(f"slope = {ground.slope:.6g} rad: a FlexibleBody on a foundation runs on level "
+                             "ground only (its static equilibrium on a slope is not modelled yet)")
+        return np.array([self._release_height(blk, theta0), 0.0, 0.0, 0.0, theta0, dtheta0], float)
 
     def _body_initial_state(self, blk, theta0, dtheta0, ground):
         """initial_state of an asymmetric body (corners at x_s = s b + c, c = blk.skew)."""
@@ -557,7 +651,11 @@ def foundation_par(body, foundation, mass=None):
     RigidBody's rigid entries hold its right side (alpha2, p2, e21), as in the rigid_body
     model's, and P_ALPHA_LEFT its alpha1."""
     blk = block_inertia(body, mass)
-    par = np.zeros(N_PAR)
+    flexible = isinstance(blk, FlexibleInertia)
+    if flexible and not isinstance(foundation, TwoSpringFoundation):
+        raise ValueError(f"foundation={type(foundation).__name__}: a FlexibleBody stands on "
+                         "TwoSpringFoundation only (the switching and linear SDOF models turn a rigid block)")
+    par = np.zeros(N_PAR_FOUNDATION_FLEXIBLE if flexible else N_PAR)
     if blk.skew != 0.0:
         par[0], par[1], par[2] = body.alpha2, body.p2, body.e21
         par[P_ALPHA_LEFT] = body.alpha1
@@ -577,6 +675,15 @@ def foundation_par(body, foundation, mass=None):
     par[P_I_0] = blk.I_0
     par[P_EF] = 1.0
     foundation.fill_par(par, blk)
+    if flexible:
+        par[PF_M] = blk.m
+        par[PF_H] = blk.H
+        par[PF_WN] = blk.wn
+        par[PF_ZETA] = blk.zeta
+        par[PF_IM] = blk.I_m
+        par[PF_MB] = blk.m_b
+        par[PF_IB] = blk.I_b
+        par[PF_HB] = blk.h_b
     return par
 
 

@@ -7,10 +7,11 @@ import pandas as pd
 
 from fastrock import _validate as V
 from fastrock.model import excitation as X
-from fastrock.model.bodies import RigidBlock
+from fastrock.model.bodies import FlexibleBody, RigidBlock
 from fastrock.model.rigid_body import RigidBody
 from fastrock.running.outcomes import checked_stable_step, outcome_of, status_of, warn_budget, warn_unstable
-from fastrock.running.result import (SimulationResult, events_frame, friction_metrics, ground_at, metrics_dict,
+from fastrock.running.result import (SimulationResult, events_frame, flexible_metrics, friction_metrics,
+                                     ground_at, metrics_dict,
                                      run_inputs)
 from fastrock.running.solver import DEFAULT_T_AFTER, make_solver
 from fastrock.running.sweep import call_kernel
@@ -29,8 +30,9 @@ CONTACT_NAMES = {L.MODE_REST: "contact", L.MODE_ROCK: "rock", L.MODE_FLIGHT: "fl
 def foundation_spec(body, foundation, mass=None, friction=None):
     """KernelSpec (registry entry, parameter vector) and the block's mass properties."""
     from fastrock.running.registry import select
-    if not isinstance(body, (RigidBlock, RigidBody)):
-        raise ValueError(f"foundation models carry a RigidBlock or RigidBody, got {type(body).__name__}")
+    if not isinstance(body, (RigidBlock, RigidBody, FlexibleBody)):
+        raise ValueError(f"foundation models carry a RigidBlock, RigidBody or FlexibleBody, got "
+                         f"{type(body).__name__}")
     spec = select(body, friction=friction, foundation=foundation, mass=mass)
     return spec, block_inertia(body, mass)
 
@@ -84,10 +86,12 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
 
     Parameters
     ----------
-    body : RigidBlock or RigidBody
+    body : RigidBlock, RigidBody or FlexibleBody
         Block with known ``b`` and ``h`` (``RigidBlock.rectangle`` / ``from_inertia``), or a
         RigidBody (an asymmetric one on ``TwoSpringFoundation`` only, with a level base; it
-        starts at rest at its static tilt unless theta0 or dtheta0 is given).
+        starts at rest at its static tilt unless theta0 or dtheta0 is given), or a
+        FlexibleBody (on ``TwoSpringFoundation`` only, level ground; its column starts
+        undeflected; it carries its own ``mass`` and a base of ``base_mass_ratio``, default 0.1).
     foundation : TwoSpringFoundation, SwitchingFoundation or LinearVibration
     excitation, vertical : Pulse, SampledMotion or GroundMotion, optional
         Horizontal and vertical ground acceleration (None: free motion).
@@ -121,7 +125,9 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
         point below the centre of mass for an asymmetric body), ``y_dot``
         [m/s], ``force_right``, ``force_left`` [N] (corner forces); with friction ``d``,
         ``d_dot`` [m, m/s] (the base point's slide relative to the ground), and ``contact``
-        also "slide" / "slide-rock" (slipping on both corners / on one). At every event the history
+        also "slide" / "slide-rock" (slipping on both corners / on one); a FlexibleBody also
+        ``u``, ``u_dot``, ``u_ratio``, ``base_shear``, ``overturning_moment`` as in
+        :func:`fastrock.simulate` (and its metrics ``max_deformation`` ...). At every event the history
         holds two rows with the same ``t`` (before and after the transition); zero crossings
         of ``theta`` are events, so the history holds them exactly.
         ``metrics`` as for :func:`fastrock.simulate`, with ``impacts`` = re-contacts after a
@@ -167,18 +173,26 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
         "pivot": np.where((mode == L.MODE_ROCK) | (mode == L.MODE_SLIDE_ROCK), D[:, L.D_PIVOT], 0),
         "lift_off": (mode != L.MODE_REST) & (mode != L.MODE_SLIDE),
     }
-    if spec.name in ("two_spring", "two_spring_friction"):
+    if spec.name in ("two_spring", "two_spring_friction", "flexible_two_spring"):
         cols["y"] = Y[:, 0]
         cols["y_dot"] = Y[:, 1]
         for side, slot, name in ((1.0, D_RIGHT, "force_right"), (-1.0, D_LEFT, "force_left")):
             x = side * blk.b + blk.skew         # the corner from the point below the CM
             d = -(Y[:, 0] - x * np.sin(th))
-            dd = -(Y[:, 1] - x * np.cos(th) * Y[:, 3])
+            dd = -(Y[:, 1] - x * np.cos(th) * Y[:, it + 1])
             cols[name] = np.where(D[:, slot] != 0, foundation.k_v * d + foundation.c_v * dd,
                                   0.0)
+    if spec.flexible:
+        u, du = Y[:, 2], Y[:, 3]
+        wn = body.omega_n
+        cols.update(u=u, u_dot=du, u_ratio=u / body.uplift_deformation)
+        cols["base_shear"] = body.mass * (wn * wn * u + 2 * body.zeta * wn * du)
+        cols["overturning_moment"] = cols["base_shear"] * body.H
     history = pd.DataFrame(cols)
     events = events_frame(lg, cnt)
     metrics = metrics_dict(met, body)
+    if spec.flexible:
+        metrics.update({k: v[0].item() for k, v in flexible_metrics(met[None, :], body).items()})
     metrics["time_rock"] = float(met[L.M_T_ROCK])
     metrics["time_contact"] = float(met[L.M_T_CONTACT])
     outcome = outcome_of(code)
@@ -189,8 +203,8 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
         metrics["stick_slip"] = int(metrics["stick_slip"])
         if outcome == "safe" and abs(metrics["residual_slide"]) > friction.slide_tolerance:
             outcome = "slide"
-    effects = (f"foundation:{foundation.model}",) + (("vertical",) if vertical is not None
-                                                     else ())
+    effects = (("flexible",) if spec.flexible else ()) + (f"foundation:{foundation.model}",) + \
+        (("vertical",) if vertical is not None else ())
     if spec.friction:
         effects = effects + ("friction",)
     return SimulationResult(history=history, events=events, outcome=outcome,

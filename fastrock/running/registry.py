@@ -259,9 +259,15 @@ def lookup(body, effects):
                 "contact model, and with foundation=TwoSpringFoundation the two-spring model; "
                 f"{', '.join(_EFFECT_FIELDS[k] for k in sorted(generic))} together is not available for it "
                 "yet; a symmetric RigidBody runs everywhere as its RigidBlock")
-        if "foundation" in generic and kind != "rigid":
-            raise ValueError("foundation= is available for RigidBlock only (the flexible "
-                             "foundation models carry a rigid block)")
+        if "foundation" in generic and kind == "flexible" and len(generic) == 1:
+            raise ValueError(
+                f"a FlexibleBody stands on foundation=TwoSpringFoundation(...); a "
+                f"{type(effects['foundation']).__name__} as foundation= is not available for it: Yu et al.'s "
+                "switching and linear SDOF models turn a rigid block about its base centre")
+        if "foundation" in generic and kind == "flexible":
+            raise ValueError(
+                "a FlexibleBody on a foundation takes no wall= or friction= yet (issue #13): the two-spring "
+                "model holds the base horizontally and has no wall contact")
         reason = NOT_AVAILABLE.get((kind, generic))
         if reason is None:
             reason = f"no model runs a {kind} body with {', '.join(sorted(generic))}"
@@ -473,3 +479,12 @@ register(Model(
 for _fx in (frozenset({"foundation:two_spring", "friction"}),
             frozenset({"foundation:two_spring", "friction", "flight"})):
     _BY_SCENE[("rigid_body", _fx)] = MODELS["two_spring_friction"]
+register(Model(
+    "flexible_two_spring", "foundation_flexible", "flexible", frozenset({"foundation:two_spring"}),
+    ("y", "y_dot", "u", "u_dot", "theta", "theta_dot"), _foundation,
+    columns=_FLEX_COLUMNS, outcomes=("safe", "mode1", "mode2", "failed"),
+    cli_options=("--alpha", "--p") + _FLEX_CLI + ("--foundation", "--foundation-omega", "--foundation-zeta",
+                                                  "--mass"),
+    toml_keys=("body", "foundation"),
+    summary="flexible body (elastic column on a rigid base with mass) on two tensionless corner "
+            "spring-dashpots: vertical and rocking motion of the base with the column's vibration"))

@@ -409,6 +409,19 @@ for _model, _fnds in FOUNDATIONS.items():
         for a in (1.3, 4.2) for f in (1.7, 5.1) for s in (1, -1)
     ], call="simulate_foundation")
 
+# a flexible body on the two-spring foundation (frozen when the model was added)
+FFLEX = O("FlexibleBody", alpha=0.2, p=2.0, omega_n_over_p=6.0, zeta=0.05, base_mass_ratio=0.3, mass=2.0)
+FFLEX_FND = [O("TwoSpringFoundation.from_vibration", body=FFLEX, omega=40.0, zeta=0.1),
+             O("TwoSpringFoundation", k_v=3.0e4, c_v=30.0)]
+singles("foundation", "flexible_two_spring-free", [
+    dict(body=FFLEX, foundation=fnd, theta0=th, dtheta0=om, duration=3.0)
+    for fnd in FFLEX_FND for th, om in RELEASES
+], call="simulate_foundation")
+singles("foundation", "flexible_two_spring-pulses", [
+    dict(body=FFLEX, foundation=FFLEX_FND[0], excitation=pulse(a, f, sign=s))
+    for a in (1.3, 4.2) for f in (1.7, 5.1) for s in (1, -1)
+], call="simulate_foundation")
+
 # 7. records (packaged El Centro) -------------------------------------------------------------
 REC = O("load_default_record")
 REC15 = O("SampledMotion.from_record", record=REC, scale=1.5)
