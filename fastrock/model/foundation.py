@@ -580,3 +580,58 @@ def foundation_par(body, foundation, mass=None):
     return par
 
 
+
+
+def wall_face(body, blk, wall):
+    """(a, H) [m]: the wall-side top corner from the base point below the centre of mass, in the
+    body frame: a horizontal (b for a block, b2 or b1 for an asymmetric RigidBody), H up (2h, or
+    h + :meth:`RigidBody.wall_face_top`)."""
+    a = blk.b + wall.side * blk.skew
+    if isinstance(body, RigidBody) and not body.is_symmetric:
+        return a, blk.h + body.wall_face_top(wall.side)
+    return a, 2.0 * blk.h
+
+
+def wall_limit_angle(body, blk, wall):
+    """Rotation theta_w [rad] toward the wall at which the two-spring block's top corner on the
+    wall side touches a tall wall (``math.inf``: never, before the corner's reach a' = hypot(a, H)).
+
+    The base point below the centre of mass is held horizontally, so that corner is at
+    ``a cos(theta) + H sin(theta)`` from it (toward the wall), whatever y_c: contact at
+    ``a cos(theta_w) + H sin(theta_w) = a + d``, i.e. ``theta_w = asin((a + d)/a') - atan2(a, H)``.
+    (The rigid wall model turns about the pivot corner: ``H sin(theta_w) = d``; here the corner
+    also comes back by ``a (1 - cos theta)``, so theta_w is a little larger.)
+
+    Raises ValueError for what the model leaves out: gap 0, a wall lower than the body's
+    wall-side face, wall friction and a rounded top."""
+    if wall.gap == 0.0:
+        raise ValueError("wall: gap = 0 is not available on a flexible foundation (the block's base would "
+                         "touch the wall as its corner springs compress); give gap > 0")
+    a, H = wall_face(body, blk, wall)
+    if wall.height is not None and wall.height < H:
+        raise ValueError(f"wall: height = {wall.height:.6g} m is lower than the body's face toward the wall "
+                         f"({H:.6g} m): on a flexible foundation only a wall at least as tall as the body is "
+                         "modelled (its top corner touches the wall); give height=None or height >= "
+                         f"{H:.6g}")
+    if wall.friction != 0.0:
+        raise ValueError("wall: friction > 0 is not available on a flexible foundation (its wall is "
+                         "frictionless)")
+    if getattr(body, "top_radius", None) is not None:
+        raise ValueError("wall: a rounded top (top_radius) is not available on a flexible foundation (its "
+                         "wall contact point is the square top corner)")
+    reach = math.hypot(a, H)
+    if a + wall.gap >= reach:
+        return math.inf
+    return math.asin((a + wall.gap) / reach) - math.atan2(a, H)
+
+
+def foundation_wall_par(body, foundation, wall, mass=None):
+    """Parameter vector of a block on the two-spring foundation beside a wall (kernels/
+    foundation_wall.py): :func:`foundation_par` with the wall side, theta_w
+    (:func:`wall_limit_angle`) and e_w in the rigid layout's wall slots."""
+    from fastrock.kernels.layout import P_E_W, P_THETA_W, P_WALL_SIDE
+    par = foundation_par(body, foundation, mass)
+    par[P_WALL_SIDE] = float(wall.side)
+    par[P_THETA_W] = wall_limit_angle(body, block_inertia(body, mass), wall)
+    par[P_E_W] = wall.restitution
+    return par

@@ -145,7 +145,8 @@ NOT_AVAILABLE = {
         "a wall together with friction is available for RigidBlock only (the contact model); a "
         "FlexibleBody takes wall= or friction=, not both yet (issue #13)",
     ("rigid", frozenset({"foundation", "wall"})):
-        "a wall beside a block on a flexible foundation is not available yet (issue #13)",
+        "a wall beside a block on a flexible foundation runs with foundation=TwoSpringFoundation(...); "
+        "the switching and linear SDOF foundations with wall= are not available yet (issue #13)",
     ("rigid", frozenset({"foundation", "friction"})):
         "sliding on a flexible foundation is not available yet: the foundation models hold the "
         "base horizontally (issue #13)",
@@ -246,7 +247,7 @@ def lookup(body, effects):
             raise ValueError(
                 "an asymmetric RigidBody (b1 != b2 or h1 != h2) runs the two-sided rocking model, with "
                 "wall= alone the wall model, with friction= or Friction(lift_off='flight') (and a wall) the "
-                "contact model, and with foundation=TwoSpringFoundation the two-spring model; "
+                "contact model, and with foundation=TwoSpringFoundation (and a wall) the two-spring model; "
                 f"{', '.join(_EFFECT_FIELDS[k] for k in sorted(generic))} together is not available for it "
                 "yet; a symmetric RigidBody runs everywhere as its RigidBlock")
         if "foundation" in generic and kind != "rigid":
@@ -329,6 +330,11 @@ def _contact(body, fx, mass):
 def _foundation(body, fx, mass):
     from fastrock.model.foundation import foundation_par
     return foundation_par(body, fx["foundation"], mass)
+
+
+def _foundation_wall(body, fx, mass):
+    from fastrock.model.foundation import foundation_wall_par
+    return foundation_wall_par(body, fx["foundation"], fx["wall"], mass)
 
 
 _RIGID_CLI = ("--alpha", "--p", "--b", "--h", "--e")
@@ -444,3 +450,14 @@ for _name, _states, _what in (
 # an asymmetric RigidBody (level base) stands on the two-spring foundation in the same kernel: its
 # corners at -b1 and b2 (kernels/foundation.py); the SDOF models refuse it (lookup says why)
 _BY_SCENE[("rigid_body", frozenset({"foundation:two_spring"}))] = MODELS["two_spring"]
+register(Model(
+    "two_spring_wall", "foundation_wall", "rigid", frozenset({"wall", "foundation:two_spring"}),
+    ("y", "y_dot", "theta", "theta_dot"), _foundation_wall,
+    columns=_FOUNDATION_COLUMNS + ("toward_wall", "max_rotation_toward_wall", "max_rotation_away_from_wall"),
+    outcomes=("safe", "mode1", "mode2", "leaning", "failed"),
+    cli_options=_RIGID_CLI + _WALL_CLI + ("--foundation", "--foundation-omega", "--foundation-zeta", "--mass"),
+    toml_keys=("body", "wall", "foundation"),
+    summary="rigid block on two tensionless corner spring-dashpots beside a rear wall (its top corner "
+            "touches a tall wall at a gap > 0)"))
+# the asymmetric RigidBody (level base, outline for its wall-side face) in the same kernel
+_BY_SCENE[("rigid_body", frozenset({"wall", "foundation:two_spring"}))] = MODELS["two_spring_wall"]

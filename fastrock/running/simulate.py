@@ -141,7 +141,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         return simulate_foundation(body, foundation, excitation, mass=mass, vertical=vertical, theta0=theta0,
                                    dtheta0=dtheta0, duration=duration, t_after=t_after, t_eval=t_eval,
                                    solver=make_solver(solver, rtol, atol, dt, **kw), allow_overturn=True,
-                                   history_capacity=history_capacity, ground=ground, early_exit=early_exit)
+                                   history_capacity=history_capacity, ground=ground, early_exit=early_exit,
+                                   wall=wall)
     solver = make_solver(solver, rtol, atol, dt, **kw)
     excitation = X.as_excitation(excitation)
     vertical = X.as_excitation(vertical, "vertical")
