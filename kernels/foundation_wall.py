@@ -30,7 +30,9 @@ moves on its springs (``M y_c'' = r_y``, :func:`.foundation.ts_accelerations`).
 The wall force is ``lambda = det A (w q''_free) / (M |J_q|)`` with q''_free
 the free rotation acceleration in the same state, so the block stays on the
 wall while ``w q''_free >= 0`` and is released (``q' = 0``) when it becomes
-negative (event FW_WALL, located with its exact rate).  The corner events run
+negative beyond its rounding (event FW_WALL, located with its exact rate; in
+free flight on the wall the margin is 0 up to rounding and both motions are
+q'' = 0, :func:`fw_margin`).  The corner events run
 as before, with the constrained accelerations.
 
 Outcomes: as the two-spring model, plus LEANING: at rest on the wall at the
@@ -51,11 +53,11 @@ import numpy as np
 from .config import jit, jit_parallel
 from .excitation import excitation_end, ground_rates
 from .foundation import (D_LEFT, D_RIGHT, TS_N_EVENTS, corner_arm,
-                         corner_compression, side_alpha, ts_after_step,
+                         corner_compression, corner_force, side_alpha, ts_after_step,
                          ts_event, ts_force_rate, ts_init_state, ts_kinetic,
                          ts_loads, ts_rhs, ts_set_mode, ts_transition,
                          never_static)
-from .hybrid import (check_energy, elastic_below_resolution,
+from .hybrid import (EPS, check_energy, elastic_below_resolution,
                      integrate_hybrid, is_chatter, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
                      LEANING, MODE_ROCK, MODE_WALL_REST, M_WALL_IMPACTS,
@@ -70,8 +72,9 @@ FW_WALL = TS_N_EVENTS   # free: wall contact; on the wall: release
 
 @jit
 def fw_margin(t, y, par, disc, hdr, smp):
-    """(w q''_free, its rate) [rad/s^2, rad/s^3] with q' = 0: the block is
-    pressed on the wall while it is >= 0 (the wall force has its sign).
+    """(w q''_free + its rounding, the rate) [rad/s^2, rad/s^3] with q' = 0:
+    the block is pressed on the wall while it is > 0 (the wall force has the
+    sign of w q''_free).
 
     q''_free = (m r_y + M r_q) / det with m = M h sin q; q is held, so m and
     det are constant and only the loads move: r_y' = f_R' + f_L' - M a_v',
@@ -83,7 +86,7 @@ def fw_margin(t, y, par, disc, hdr, smp):
     h = par[P_H]
     ry, rq, mh = ts_loads(t, y, par, disc, hdr, smp)
     det = M * par[P_I_C] - mh * mh
-    _ag, dag, _av, dav = ground_rates(t, hdr, smp)
+    ag, dag, av, dav = ground_rates(t, hdr, smp)
     dR = 0.0
     dL = 0.0
     if disc[D_RIGHT] != 0:
@@ -95,7 +98,17 @@ def fw_margin(t, y, par, disc, hdr, smp):
     dry = dR + dL - M * dav
     drq = (M * h * (dav * sq - dag * cq) - par[P_B] * cq * (dR - dL)
            - par[P_B_SKEW] * cq * (dR + dL))
-    return w * (mh * ry + M * rq) / det, w * (mh * dry + M * drq) / det
+    # what the margin is known to: the rounding of its terms.  In free flight
+    # on the wall (no corner force) gravity turns nothing, the margin is 0 up
+    # to that rounding, and the constrained and free motions agree (q'' = 0):
+    # the margin counts as negative only beyond it, or a rounding-level sign
+    # would release and re-catch the block at one instant, forever.
+    fs = abs(corner_force(y, 1.0, par, disc[D_RIGHT])) + \
+        abs(corner_force(y, -1.0, par, disc[D_LEFT]))
+    MG = M * abs(par[P_G] + av)
+    res = 8.0 * EPS * (abs(mh) * (fs + MG) + M * (
+        M * h * (abs(par[P_G] + av) + abs(ag)) + (par[P_B] + abs(par[P_B_SKEW])) * fs)) / det
+    return w * (mh * ry + M * rq) / det + res, w * (mh * dry + M * drq) / det
 
 
 @jit

@@ -275,7 +275,9 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     opt = solver.options(0.0, early_exit)
     if foundation is not None:
         from fastrock.model.foundation import block_inertia
-        y0 = np.asarray(foundation.initial_state(block_inertia(body, mass), 0.0, 0.0, ground), float)
+        from fastrock.running.foundation import check_wall_start
+        y0 = check_wall_start(spec, np.asarray(foundation.initial_state(block_inertia(body, mass), 0.0, 0.0,
+                                                                        ground), float), wall)
     else:
         y0 = np.zeros(spec.n_state)
         if ground is not None:

@@ -77,8 +77,9 @@ def _prepare(i, scene, early_exit):
         ground.check_lift_off(body, X.channel_peak(hdr, smp), spec.name, vertical)
     if scene.foundation is not None:
         from fastrock.model.foundation import block_inertia
-        y0 = np.asarray(scene.foundation.initial_state(block_inertia(body, mass), scene.theta0,
-                                                       scene.dtheta0, ground), float)
+        from fastrock.running.foundation import check_wall_start
+        y0 = check_wall_start(spec, np.asarray(scene.foundation.initial_state(
+            block_inertia(body, mass), scene.theta0, scene.dtheta0, ground), float), scene.wall)
     else:
         y0 = initial_state(spec, body, scene.theta0, scene.dtheta0, scene.wall, ground)
     return spec, y0, hdr, smp, opt, solver

@@ -55,8 +55,15 @@ def integrate_foundation(spec, y0, hdr, smp, opt, te, cap):
         return code, hist_t[:nh], hist_y[:nh], hist_d[:nh], log[:nl], met, cnt
 
 
+def check_wall_start(spec, y0, wall):
+    """Reject a start on the foundation (the release, a static tilt on a slope or an asymmetric
+    body's rest tilt) that penetrates the wall (theta_w of the spec's parameter vector)."""
+    if wall is not None:
+        _check_wall_start(y0[spec.theta_index], wall, spec.par[L.P_THETA_W])
+    return y0
+
+
 def _check_wall_start(theta0, wall, theta_w):
-    """Reject a start (the release, or a static tilt on a slope) that penetrates the wall."""
     if wall.side * theta0 > theta_w:
         raise ValueError(f"theta0 = {theta0!r} penetrates the wall: on the foundation, with the wall on side "
                          f"{wall.side:+d}, the block must satisfy side*theta0 <= theta_w = {theta_w:.6g} rad")
@@ -143,8 +150,7 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
     hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
                                         history_capacity, solver, V.boolean("early_exit", early_exit), ground)
     y0 = foundation.initial_state(blk, theta0, dtheta0, ground)
-    if wall is not None:
-        _check_wall_start(y0[spec.theta_index], wall, spec.par[L.P_THETA_W])
+    check_wall_start(spec, y0, wall)
     code, t, Y, D, lg, met, cnt = integrate_foundation(spec, y0, hdr, smp, opt, te, cap)
     if solver.dt:
         checked = None

@@ -292,6 +292,7 @@ class Study:
             raise StudyError(str(exc)) from None
         _check_intensity(levels, self.measure, records, bodies)
         from fastrock.model.foundation import block_inertia as _block_inertia
+        from fastrock.running.foundation import check_wall_start as _check_wall_start
         specs, y0s = {}, {}
         for bi, body in enumerate(bodies):
             for vi, wall in enumerate(walls):
@@ -303,8 +304,9 @@ class Study:
                         effects[vi]["ground"].check_scene(body, friction=friction, flexible=specs[bi, vi].flexible,
                                                           foundation=foundation)
                     y0s[bi, vi] = (np.zeros(specs[bi, vi].n_state) if foundation is None else
-                                   foundation.initial_state(_block_inertia(body, mass), 0.0, 0.0,
-                                                            effects[vi].get("ground")))
+                                   _check_wall_start(specs[bi, vi], np.asarray(foundation.initial_state(
+                                       _block_inertia(body, mass), 0.0, 0.0, effects[vi].get("ground")),
+                                       float), wall))
                 except (TypeError, ValueError) as exc:
                     raise StudyError(f"body {bi} with variant {names[vi]!r}: {exc}") from None
                 if effects[vi].get("ground") is not None:     # a flexible column at its static deflection
