@@ -141,6 +141,27 @@ def test_wall_impact_is_the_impulse_solve(side, e_w):
             assert T1 < T0
 
 
+def test_impact_map_closed_form_sympy():
+    """The impulse solve in symbols (docs/theory/foundation.md, "Rear wall"): q'+ = -e q'-,
+    y'+ = y'- + h sin q (q'+ - q'-) (the CM's vertical velocity kept), and the kinetic energy
+    loses (1 - e^2)(I_G + M h^2 cos^2 q) q'^2 / 2."""
+    sp = pytest.importorskip("sympy")
+    M, IG, h, a, H, w, e, q, y, yd, qd, lam, yp, qp = sp.symbols(
+        "M I_G h a H w e q y ydot qdot lambda yp qp", real=True)
+    vx, vy = h * sp.cos(q) * qd, yd - h * sp.sin(q) * qd
+    T = (M * (vx ** 2 + vy ** 2) + IG * qd ** 2) / 2
+    v, vp = sp.Matrix([yd, qd]), sp.Matrix([yp, qp])
+    A = sp.hessian(T, v)
+    xc = w * a * sp.cos(q) + H * sp.sin(q)            # the corner's x; y_c does not move it
+    J = sp.Matrix([sp.diff(xc, y), sp.diff(xc, q)])
+    sol = sp.solve(list(A * (vp - v) - lam * J) + [(J.T * vp)[0] + e * (J.T * v)[0]], [yp, qp, lam],
+                   dict=True)[0]
+    assert sp.simplify(sol[qp] + e * qd) == 0
+    assert sp.simplify(sol[yp] - (yd + h * sp.sin(q) * (sol[qp] - qd))) == 0
+    loss = T - T.subs({yd: sol[yp], qd: sol[qp]}, simultaneous=True)
+    assert sp.simplify(loss - (1 - e ** 2) * (IG + M * h ** 2 * sp.cos(q) ** 2) * qd ** 2 / 2) == 0
+
+
 def test_contact_angle_from_the_foundation_kinematics():
     """theta_w solves a cos + H sin = a + d: larger than the rigid model's H sin = d (the corner
     comes back by a (1 - cos theta) while the base point is held)."""
