@@ -21,6 +21,7 @@ import fastrock as fr
 from fastrock.model.foundation import TwoSpringFoundation, block_inertia, wall_limit_angle
 from fastrock.running import registry
 from fastrock.running.foundation import simulate_foundation
+from foundation_reference import rigid_limit_inertia, rigid_limit_potential, rigid_limit_quarter_period
 
 BODY = fr.RigidBlock.rectangle(b=0.1, h=0.5)
 BLK = block_inertia(BODY, 1.0)
@@ -201,28 +202,17 @@ def test_energy_never_increases(gap, e_w, side, zeta, omega, theta0, dtheta0):
 # ------------------------------------------------------------------------- rigid limit
 def rigid_limit_wall_time(q0, blk, gap):
     """Release at q0 > 0 on the right corner to the first wall impact on the left (wall side -1)
-    as k_v -> inf: the model's rigid limit turns about a corner that slides (the base point is
-    held), J(q) q'^2/2 + V(q) conserved, J = I_G + M (h^2 + b^2 cos^2 q - 2 b h sin q cos q),
-    V = M g (b sin q + h cos q) (q measured toward the pivot); the landing at q = 0 is Housner's
-    map (J(0) = I_0), then the same motion on the left corner to theta_w."""
-    M, b, h, IG, g = blk.M, blk.b, blk.h, blk.I_G, blk.g
-
+    as k_v -> inf (tests/foundation_reference.py): the release to the landing, Housner's map there
+    (J(0) = I_0), then the same motion on the left corner to theta_w, J q'^2/2 + V conserved."""
     def J(q):
-        return IG + M * (h * h + (b * math.cos(q)) ** 2 - 2 * b * h * math.sin(q) * math.cos(q))
+        return rigid_limit_inertia(q, blk)
 
     def V(q):
-        return M * g * (b * math.sin(q) + h * math.cos(q))
+        return rigid_limit_potential(q, blk)
 
-    def f(u):      # q = q0 - u^2 removes the endpoint singularity
-        if u == 0.0:
-            return 2.0 * math.sqrt(J(q0) / (2.0 * M * g * (b * math.cos(q0) - h * math.sin(q0))))
-        q = q0 - u * u
-        return 2.0 * u * math.sqrt(J(q) / (2.0 * (V(q0) - V(q))))
-
-    t1 = quad(f, 0.0, math.sqrt(q0), epsabs=1e-15, epsrel=1e-13)[0]
+    t1 = rigid_limit_quarter_period(q0, blk)
     w0 = math.sqrt(2.0 * (V(q0) - V(0.0)) / J(0.0))
-    e = BODY.e
-    E = 0.5 * J(0.0) * (e * w0) ** 2 + V(0.0)
+    E = 0.5 * J(0.0) * (BODY.e * w0) ** 2 + V(0.0)
     tw = wall_limit_angle(BODY, blk, fr.Wall(gap, side=-1))
     t2 = quad(lambda q: math.sqrt(J(q) / (2.0 * (E - V(q)))), 0.0, tw, epsabs=1e-15,
               epsrel=1e-13)[0]
