@@ -45,6 +45,22 @@ motion (wall impacts and the wall rest only remove energy), and at
 ``E >= M g R_w - (M g)^2 / (2 k_v)`` (R_w the distance from that corner to
 the centre of mass), so a block below that energy never comes back over
 alpha_w.
+
+Switching model beside the wall (``switching_wall``)
+----------------------------------------------------
+The switching SDOF of :mod:`.foundation` (state ``(theta, theta')``) rocks by
+Housner's equation, so its wall is the rigid wall model's (:mod:`.wall`):
+while rocking on the pivot near the wall (``s = w``) the block touches it at
+``w theta = theta_w`` (the rigid model's angle, tall or short wall), the
+impact keeps the pivot with ``theta'+ = -e_w theta'-``, a chatter ends at
+rest on the wall (a static phase whose margin is Housner's ``w theta''`` on
+the wall, :func:`.wall.wall_rest_margin`) and the release rocks on again.
+The contact phase (rotation about the base centre, ``w theta <= theta_y``
+while turning toward the wall) never reaches the wall: the front end requires
+``theta_w > theta_y``.  LEANING: at rest on the wall at the end with theta_w >
+alpha, or after the excitation rocking on the near pivot past alpha with
+Housner's energy below the barrier (:func:`.wall.trapped_on_wall`; the
+contact phase lies below theta_y < alpha, so such a block never returns).
 """
 import math
 
@@ -62,9 +78,13 @@ from .hybrid import (EPS, check_energy, elastic_below_resolution,
 from .layout import (D_MODE, D_PIVOT, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
                      LEANING, MODE_ROCK, MODE_WALL_REST, M_WALL_IMPACTS,
                      N_DISC, O_EARLY_EXIT, O_T0, RUNNING, S_ON, SAFE_REST)
-from .layout import (P_B, P_B_SKEW, P_E_W, P_G, P_H, P_I_C, P_KV, P_MASS,
+from .layout import (P_ALPHA, P_B, P_B_SKEW, P_E_W, P_G, P_H, P_I_C, P_KV, P_MASS,
                      P_THETA_OVER, P_THETA_W, P_WALL_SIDE)
+from .foundation import (SW_N_EVENTS, sw_after_step, sw_event,
+                         sw_init_state, sw_rhs, sw_transition)
 from .rigid import track_rotation
+from .wall import (block_alpha_p, release_from_wall, trapped_on_wall,
+                   wall_impact_of, wall_rest_margin)
 
 FW_N_EVENTS = TS_N_EVENTS + 1
 FW_WALL = TS_N_EVENTS   # free: wall contact; on the wall: release
@@ -237,6 +257,70 @@ def two_spring_wall_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                             log, cnt)
 
 
+# ================================================ switching model and wall
+SWW_N_EVENTS = SW_N_EVENTS + 1
+SWW_WALL = SW_N_EVENTS
+
+
+@jit
+def sww_event(k, t, y, par, disc, hdr, smp):
+    if k == SWW_WALL:
+        w = par[P_WALL_SIDE]
+        if disc[D_MODE] == MODE_ROCK and disc[D_PIVOT] == w:
+            return par[P_THETA_W] - w * y[0], -w * y[1], True
+        return np.inf, 0.0, True
+    return sw_event(k, t, y, par, disc, hdr, smp)
+
+
+@jit
+def sww_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    if k < 0:
+        # end of the rest on the wall: rock on from it
+        release_from_wall(t, y, par, disc, log, cnt)
+        return RUNNING
+    if k == SWW_WALL:
+        return wall_impact_of(t, y, par, disc, hdr, smp, opt, met, log, cnt,
+                              block_alpha_p)
+    return sw_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt)
+
+
+@jit
+def sww_static_margin(t, y, par, disc, hdr, smp):
+    if disc[D_MODE] == MODE_WALL_REST:
+        return wall_rest_margin(t, par, hdr, smp, block_alpha_p)
+    return np.inf
+
+
+@jit
+def sww_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
+    st = sw_after_step(t, y, par, disc, hdr, smp, opt, met, at_end)
+    if not (at_end or (st == RUNNING and opt[O_EARLY_EXIT] != 0.0)):
+        return st
+    w = par[P_WALL_SIDE]
+    if disc[D_MODE] == MODE_WALL_REST:
+        if not at_end:
+            return st
+        if par[P_THETA_W] > par[P_ALPHA]:
+            return LEANING
+        return SAFE_REST
+    if disc[D_MODE] == MODE_ROCK and t >= excitation_end(hdr) and \
+            hdr[S_ON] == 0.0 and trapped_on_wall(y, par, disc, block_alpha_p):
+        track_rotation(w * par[P_THETA_W], met)
+        return LEANING
+    return st
+
+
+@jit
+def switching_wall_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
+                       hist_d, log, cnt):
+    disc = np.zeros(N_DISC, dtype=np.int64)
+    sw_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
+    return integrate_hybrid(sw_rhs, sww_event, sww_transition,
+                            sww_static_margin, sww_after_step, SWW_N_EVENTS,
+                            y, par, disc, hdr, smp, opt, t_eval, met, hist_t,
+                            hist_y, hist_d, log, cnt)
+
+
 # ---------------------------------------------------------------- entries
 @jit
 def two_spring_wall_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t,
@@ -250,3 +334,17 @@ def two_spring_wall_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t,
 def two_spring_wall_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
     """Many two-spring runs beside a wall in parallel (see rigid_sweep)."""
     sweep_rows(two_spring_wall_run, Y0, PAR, HDR, smp, OPT, status, MET, YF)
+
+
+@jit
+def switching_wall_simulate(y, par, hdr, smp, opt, t_eval, met, hist_t,
+                            hist_y, hist_d, log, cnt):
+    """One switching-SDOF run beside a wall, y = (theta, theta')."""
+    return switching_wall_run(y, par, hdr, smp, opt, t_eval, met, hist_t,
+                              hist_y, hist_d, log, cnt)
+
+
+@jit_parallel
+def switching_wall_sweep(Y0, PAR, HDR, smp, OPT, status, MET, YF):
+    """Many switching-SDOF runs beside a wall in parallel (see rigid_sweep)."""
+    sweep_rows(switching_wall_run, Y0, PAR, HDR, smp, OPT, status, MET, YF)

@@ -313,8 +313,11 @@ def test_rest_on_the_wall_is_released_when_the_push_ends():
     (dict(wall=fr.Wall(0.02, height=0.5)), "height"),
     (dict(wall=fr.Wall(0.02, friction=0.3)), "friction"),
     (dict(wall=fr.Wall(0.02), theta0=-0.2), "penetrates the wall"),
-    (dict(wall=fr.Wall(0.02), foundation=fr.SwitchingFoundation.from_vibration(BODY, 40.0)),
-     "TwoSpringFoundation"),
+    (dict(wall=fr.Wall(0.001), foundation=fr.SwitchingFoundation.from_vibration(BODY, 20.0)),
+     "theta_y"),
+    (dict(wall=fr.Wall(0.0), foundation=fr.SwitchingFoundation.from_vibration(BODY, 40.0)), "gap = 0"),
+    (dict(wall=fr.Wall(0.05, friction=0.2), foundation=fr.SwitchingFoundation.from_vibration(BODY, 40.0)),
+     "friction"),
     (dict(wall=fr.Wall(0.02), foundation=fr.LinearVibration.from_vibration(BODY, 40.0)),
      "TwoSpringFoundation"),
 ])
@@ -456,3 +459,78 @@ def test_asymmetric_body_beside_the_wall():
     b = fr.simulate(BODY, pulse, foundation=FND, wall=wall, mass=1.0)
     assert a.metrics["wall_impacts"] > 0
     np.testing.assert_array_equal(a.history["theta"], b.history["theta"])
+
+
+
+# ------------------------------------------------------------------ the switching model
+SW = fr.SwitchingFoundation.from_vibration(BODY, 60.0, 0.05)
+
+
+@pytest.mark.parametrize("side", [1, -1])
+def test_switching_wall_out_of_reach_is_the_no_wall_run(side):
+    pulse = fr.Pulse(1.1, 2.0, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+    base = fr.simulate(BODY, pulse, foundation=SW, duration=3.0)
+    toward = base.metrics["max_rotation_pos" if side > 0 else "max_rotation_neg"]
+    assert base.metrics["impacts"] > 0 and base.outcome == "safe" and toward > 0.0
+    gap_near = 2 * BODY.h * math.sin(1.5 * toward)      # the rigid model's angle: 1.5 times the peak
+    for gap in (5.0, gap_near):
+        r = fr.simulate(BODY, pulse, foundation=SW, wall=fr.Wall(gap, side=side), duration=3.0)
+        assert r.kernel == "switching_wall" and r.metrics["wall_impacts"] == 0
+        assert r.status == base.status
+        same_metrics(r.metrics, base.metrics)
+        for c in ("t", "theta", "theta_dot"):
+            np.testing.assert_array_equal(r.history[c].to_numpy(), base.history[c].to_numpy())
+
+
+@pytest.mark.parametrize("side, e_w", [(1, 1.0), (-1, 0.4)])
+def test_switching_wall_impact_is_the_rigid_wall_map(side, e_w):
+    """Rocking is Housner's: the wall at the rigid model's angle (sin theta_w = d / 2h), pivot
+    kept, theta'+ = -e_w theta'- (0 when a chatter settles it on the wall)."""
+    wall = fr.Wall(0.02, side=side, restitution=e_w)
+    tw = wall.limit_angle(BODY)
+    pulse = fr.Pulse(1.5, 2.0, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p", sign=-side)
+    r = fr.simulate(BODY, pulse, foundation=fr.SwitchingFoundation.from_vibration(BODY, 30.0, 0.05),
+                    wall=wall, duration=4.0)
+    rows = impact_rows(r)
+    assert len(rows) >= 1
+    for pre, post in rows:
+        assert post["theta"] == side * tw and pre["theta"] == pytest.approx(side * tw, rel=1e-12)
+        assert post["pivot"] == pre["pivot"] == side
+        expect = 0.0 if post["theta_dot"] == 0.0 and abs(e_w * pre["theta_dot"]) < 1e-9 else \
+            -e_w * pre["theta_dot"]
+        assert post["theta_dot"] == expect
+
+
+def test_stiff_switching_converges_to_the_rigid_wall_model():
+    """As k_t grows (theta_y -> 0) the switching block beside a wall tends to the rigid wall model:
+    the first wall impact time converges, relative errors 2.1e-2, 1.9e-3, 1.4e-4, 1.6e-5 at
+    omega = 100, 300, 1000, 3000 rad/s (1.4e-6 at 1e4: about 1/k_t), and the outcomes on a small
+    pulse grid agree."""
+    wall = fr.Wall(0.02, side=-1, restitution=0.8)
+    pulse = fr.Pulse(1.5, 2.0, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p", sign=1)
+    rigid = fr.simulate(BODY, pulse, wall=wall, rtol=1e-10, atol=1e-13)
+    t_r = rigid.events.loc[rigid.events["event"] == "wall-impact", "t"].iloc[0]
+    err = []
+    for omega in (100.0, 300.0, 1000.0, 3000.0):
+        fnd = fr.SwitchingFoundation.from_vibration(BODY, omega, 0.05)
+        r = fr.simulate(BODY, pulse, foundation=fnd, wall=wall, rtol=1e-10, atol=1e-13)
+        err.append(abs(r.events.loc[r.events["event"] == "wall-impact", "t"].iloc[0] / t_r - 1.0))
+    assert np.all(np.diff(err) < 0), err
+    kw = dict(amplitude_ratios=[0.8, 1.5, 2.5, 4.0], frequency_ratios=[2.0, 4.0], sign=1, t_after=3.0)
+    a = fr.overturning_spectrum(BODY, wall=wall, **kw)
+    b = fr.overturning_spectrum(BODY, wall=wall, foundation=fr.SwitchingFoundation.from_vibration(BODY, 3000.0, 0.05),
+                                **kw)
+    assert list(b["outcome"]) == list(a["outcome"])
+    assert (b["wall_impacts"] > 0).any()
+
+
+def test_switching_leaning_and_mirror():
+    wall = fr.Wall(0.25, side=1, restitution=0.5)
+    assert wall.limit_angle(BODY) > BODY.alpha
+    r = fr.simulate(BODY, None, foundation=SW, wall=wall, theta0=BODY.alpha + 0.02, duration=4.0)
+    assert r.outcome == "leaning" and r.metrics["wall_impacts"] >= 1
+    pulse = dict(amplitude=1.4, frequency=2.0, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+    a, b = (fr.simulate(BODY, fr.Pulse(sign=s, **pulse), foundation=SW,
+                        wall=fr.Wall(0.02, side=-s, restitution=0.7), duration=3.0) for s in (1, -1))
+    assert a.outcome == b.outcome and a.metrics["wall_impacts"] == b.metrics["wall_impacts"] > 0
+    np.testing.assert_allclose(a.history["theta"], -b.history["theta"], rtol=1e-9, atol=1e-12)

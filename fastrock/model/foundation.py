@@ -635,3 +635,31 @@ def foundation_wall_par(body, foundation, wall, mass=None):
     par[P_THETA_W] = wall_limit_angle(body, block_inertia(body, mass), wall)
     par[P_E_W] = wall.restitution
     return par
+
+
+def switching_wall_par(body, foundation, wall, mass=None):
+    """Parameter vector of a block on the switching foundation beside a wall (kernels/
+    foundation_wall.py): its rocking phase is Housner's, so the wall is the rigid wall model's
+    (:meth:`Wall.limit_angle`: tall or short wall, rounded top), reached while rocking on the pivot
+    near the wall.
+
+    Raises ValueError for gap 0, wall friction, and a wall the contact phase could reach
+    (theta_w <= theta_y = M g b / k_t: the block turns about its base centre there)."""
+    from fastrock.kernels.layout import P_E_W, P_THETA_W, P_THETA_Y, P_WALL_SIDE
+    if wall.gap == 0.0:
+        raise ValueError("wall: gap = 0 is not available on a flexible foundation (Hogan's one-sided rocking "
+                         "needs the block resting against the wall on rigid ground); give gap > 0")
+    if wall.friction != 0.0:
+        raise ValueError("wall: friction > 0 is not available on a flexible foundation (its wall is "
+                         "frictionless)")
+    par = foundation_par(body, foundation, mass)
+    tw = wall.limit_angle(body)
+    if not tw > par[P_THETA_Y]:
+        raise ValueError(f"wall: gap = {wall.gap:.6g} m puts the wall at theta_w = {tw:.6g} rad, not beyond the "
+                         f"switching model's uplift rotation theta_y = {par[P_THETA_Y]:.6g} rad: its contact phase "
+                         "(rotation about the base centre) would reach the wall, which is not modelled; give a "
+                         "larger gap or use TwoSpringFoundation")
+    par[P_WALL_SIDE] = float(wall.side)
+    par[P_THETA_W] = tw
+    par[P_E_W] = wall.restitution
+    return par

@@ -145,8 +145,9 @@ NOT_AVAILABLE = {
         "a wall together with friction is available for RigidBlock only (the contact model); a "
         "FlexibleBody takes wall= or friction=, not both yet (issue #13)",
     ("rigid", frozenset({"foundation", "wall"})):
-        "a wall beside a block on a flexible foundation runs with foundation=TwoSpringFoundation(...); "
-        "the switching and linear SDOF foundations with wall= are not available yet (issue #13)",
+        "a wall beside a block on a flexible foundation runs with foundation=TwoSpringFoundation(...) or "
+        "SwitchingFoundation(...); LinearVibration with wall= is not available (it never lifts off and "
+        "turns about its base centre; issue #13)",
     ("rigid", frozenset({"foundation", "friction"})):
         "sliding on a flexible foundation is not available yet: the foundation models hold the "
         "base horizontally (issue #13)",
@@ -337,6 +338,11 @@ def _foundation_wall(body, fx, mass):
     return foundation_wall_par(body, fx["foundation"], fx["wall"], mass)
 
 
+def _switching_wall(body, fx, mass):
+    from fastrock.model.foundation import switching_wall_par
+    return switching_wall_par(body, fx["foundation"], fx["wall"], mass)
+
+
 _RIGID_CLI = ("--alpha", "--p", "--b", "--h", "--e")
 _RIGID_TOML = ("body",)
 _FLEX_CLI = ("--omega-n-over-p", "--zeta", "--base-mass-ratio")
@@ -461,3 +467,12 @@ register(Model(
             "touches a tall wall at a gap > 0)"))
 # the asymmetric RigidBody (level base, outline for its wall-side face) in the same kernel
 _BY_SCENE[("rigid_body", frozenset({"wall", "foundation:two_spring"}))] = MODELS["two_spring_wall"]
+register(Model(
+    "switching_wall", "foundation_wall", "rigid", frozenset({"wall", "foundation:switching"}),
+    ("theta", "theta_dot"), _switching_wall,
+    columns=_FOUNDATION_COLUMNS + ("toward_wall", "max_rotation_toward_wall", "max_rotation_away_from_wall"),
+    outcomes=("safe", "mode1", "mode2", "leaning", "flight", "failed"),
+    cli_options=_RIGID_CLI + _WALL_CLI + ("--foundation", "--foundation-omega", "--foundation-zeta", "--mass"),
+    toml_keys=("body", "wall", "foundation"),
+    summary="rigid block switching between a rotational spring and Housner rocking beside a rear wall "
+            "(the rigid wall model's contact and impact while rocking toward it)"))
