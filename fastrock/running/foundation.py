@@ -108,10 +108,11 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
     allow_overturn : bool
         Allow ``|theta0| >= alpha`` (a release that overturns); otherwise ValueError.
     wall : Wall, optional
-        A rigid rear wall (TwoSpringFoundation only; gap > 0, a wall at least as tall as the
-        body, frictionless): the block's top corner on the wall side touches it at
-        :func:`fastrock.model.foundation.wall_limit_angle` (docs: theory/foundation, "Rear
-        wall").
+        A rigid rear wall, gap > 0 and frictionless (docs: theory/foundation, "Rear wall").
+        TwoSpringFoundation: a wall at least as tall as the body, touched by the top corner at
+        :func:`fastrock.model.foundation.wall_limit_angle`. SwitchingFoundation: the rigid wall
+        model's wall while rocking (:func:`fastrock.model.foundation.switching_wall_par`).
+        LinearVibration takes none.
     duration, t_after, t_eval, solver, rtol, atol, dt, max_steps, ground, early_exit :
         As in :func:`fastrock.simulate` (the two-spring model's early decisions: after the
         excitation, on level ground, a symmetric block that can no longer lift off or overturn).

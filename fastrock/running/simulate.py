@@ -79,7 +79,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         length and start, unless ``resample_vertical=True`` (linear
         interpolation onto the horizontal samples).
     wall : Wall, optional
-        One-sided rocking against a rear wall.
+        One-sided rocking against a rear wall; with ``foundation`` (TwoSpringFoundation or
+        SwitchingFoundation) the wall stands beside the block on its foundation.
     friction : Friction, optional
         Coulomb friction (sliding and slide-rocking); None or mu_s = inf:
         no sliding degree of freedom at all.
