@@ -534,3 +534,15 @@ def test_switching_leaning_and_mirror():
                         wall=fr.Wall(0.02, side=-s, restitution=0.7), duration=3.0) for s in (1, -1))
     assert a.outcome == b.outcome and a.metrics["wall_impacts"] == b.metrics["wall_impacts"] > 0
     np.testing.assert_allclose(a.history["theta"], -b.history["theta"], rtol=1e-9, atol=1e-12)
+
+
+def test_the_example_scene_runs():
+    from pathlib import Path
+    ex = Path(__file__).resolve().parents[1] / "examples" / "scenes" / "foundation_wall.toml"
+    sc = fr.Scene.from_toml(ex)
+    assert sc.kernel == "two_spring_wall" and sc.mass == 50.0
+    r = sc.run()
+    fnd = TwoSpringFoundation.from_vibration(sc.body, 60.0, 0.05, mass=50.0)
+    ref = fr.simulate(sc.body, sc.excitation, foundation=fnd, mass=50.0,
+                      wall=fr.Wall(0.01, side=-1, restitution=0.6))
+    assert r.status == ref.status and r.metrics["wall_impacts"] == ref.metrics["wall_impacts"] > 0
