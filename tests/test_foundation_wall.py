@@ -22,6 +22,7 @@ from fastrock.model.foundation import TwoSpringFoundation, block_inertia, wall_l
 from fastrock.running import registry
 from fastrock.running.foundation import simulate_foundation
 from foundation_reference import rigid_limit_inertia, rigid_limit_potential, rigid_limit_quarter_period
+from foundation_wall_reference import reference_run
 
 BODY = fr.RigidBlock.rectangle(b=0.1, h=0.5)
 BLK = block_inertia(BODY, 1.0)
@@ -161,6 +162,29 @@ def test_impact_map_closed_form_sympy():
     assert sp.simplify(sol[yp] - (yd + h * sp.sin(q) * (sol[qp] - qd))) == 0
     loss = T - T.subs({yd: sol[yp], qd: sol[qp]}, simultaneous=True)
     assert sp.simplify(loss - (1 - e ** 2) * (IG + M * h ** 2 * sp.cos(q) ** 2) * qd ** 2 / 2) == 0
+
+
+@pytest.mark.parametrize("omega, zeta, e_w, side, gap, dtheta0", [
+    (60.0, 0.05, 0.7, 1, 0.01, 0.8), (30.0, 0.2, 1.0, -1, 0.02, -1.0), (100.0, 0.0, 0.5, 1, 0.005, 0.5),
+    (40.0, 0.5, 0.3, -1, 0.003, -0.4)])
+def test_free_motion_against_the_solve_ivp_reference(omega, zeta, e_w, side, gap, dtheta0):
+    """Wall impact times and velocities of free runs against tests/foundation_wall_reference.py
+    (its own Lagrange equations, corner switches as solve_ivp events, the impulse solve, DOP853 at
+    rtol 1e-12; both resolve the corners' dashpots letting go at the impact): agreement to
+    1e-11 or better measured, asserted at 1e-8."""
+    fnd = TwoSpringFoundation.from_vibration(BODY, omega, zeta)
+    r = fr.simulate(BODY, None, foundation=fnd, wall=fr.Wall(gap, side=side, restitution=e_w), dtheta0=dtheta0,
+                    duration=2.0, rtol=1e-12, atol=1e-15)
+    y0 = r.history[["y", "y_dot", "theta", "theta_dot"]].iloc[0].to_numpy()
+    ev = r.events[r.events["event"] == "wall-impact"].iloc[:4]
+    ref = reference_run(BLK, fnd.k_v, fnd.c_v, side, gap, e_w, y0, 2.0, 4)
+    assert len(ref) == len(ev) >= 1
+    for (t, vm, vp), (_, row) in zip(ref, ev.iterrows()):
+        assert row["t"] == pytest.approx(t, rel=1e-8)
+        assert row["velocity_before"] == pytest.approx(vm[1], rel=1e-8)
+        assert row["velocity_after"] == pytest.approx(vp[1], rel=1e-8)
+    if r.outcome.startswith("mode"):
+        assert len(ref) == r.metrics["wall_impacts"]
 
 
 def test_contact_angle_from_the_foundation_kinematics():
