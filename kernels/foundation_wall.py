@@ -68,7 +68,8 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import excitation_end, ground_rates
-from .foundation import (D_LEFT, D_RIGHT, TS_N_EVENTS, corner_arm,
+from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT,
+                         TS_N_EVENTS, corner_arm, ts_corner_transition,
                          corner_compression, corner_force, side_alpha, ts_after_step,
                          ts_event, ts_force_rate, ts_init_state, ts_kinetic,
                          ts_loads, ts_rhs, ts_set_mode, ts_transition,
@@ -78,7 +79,7 @@ from .hybrid import (EPS, check_energy, elastic_below_resolution,
 from .layout import (D_MODE, D_PIVOT, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
                      LEANING, MODE_ROCK, MODE_WALL_REST, M_WALL_IMPACTS,
                      N_DISC, O_EARLY_EXIT, O_T0, RUNNING, S_ON, SAFE_REST)
-from .layout import (P_ALPHA, P_B, P_B_SKEW, P_E_W, P_G, P_H, P_I_C, P_KV, P_MASS,
+from .layout import (P_ALPHA, P_B, P_B_SKEW, P_CV, P_E_W, P_G, P_H, P_I_C, P_KV, P_MASS,
                      P_THETA_OVER, P_THETA_W, P_WALL_SIDE)
 from .foundation import (SW_N_EVENTS, sw_after_step, sw_event,
                          sw_init_state, sw_rhs, sw_transition)
@@ -151,9 +152,27 @@ def fw_kick(y, par, dq):
 
 
 @jit
-def fw_settle(t, y, par, disc, hdr, smp, log, cnt):
+def fw_resolve_corners(t, y, par, disc, hdr, smp, met, log, cnt):
+    """After a velocity jump the dashpots' forces jump too: a corner in
+    contact whose law now pulls lets go, a free one pressed (delta >= 0, law
+    > 0) touches, each by :func:`.foundation.ts_corner_transition` (what the
+    driver would do at the next phase start, but also when the law would
+    come back within the first step)."""
+    for i in range(2):
+        side = 1.0 if i == 0 else -1.0
+        slot = D_RIGHT if i == 0 else D_LEFT
+        d, dd = corner_compression(y, side, par)
+        f = par[P_KV] * d + par[P_CV] * dd
+        if (disc[slot] != 0 and f < 0.0) or (disc[slot] == 0 and d >= 0.0 and f > 0.0):
+            ts_corner_transition(side, slot, D_HOLD_RIGHT if i == 0 else D_HOLD_LEFT, t, y, par, disc,
+                                 hdr, smp, met, log, cnt)
+
+
+@jit
+def fw_settle(t, y, par, disc, hdr, smp, met, log, cnt):
     """End of a chatter at the wall: q' -> 0 (plastic), rest on it if pressed."""
     fw_kick(y, par, -y[3])
+    fw_resolve_corners(t, y, par, disc, hdr, smp, met, log, cnt)
     m, _md = fw_margin(t, y, par, disc, hdr, smp)
     if m > 0.0:
         disc[D_MODE] = MODE_WALL_REST
@@ -174,13 +193,14 @@ def fw_wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     check_energy(before, ts_kinetic(y, par), met)
     track_rotation(y[2], met)
     log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, y[2], disc[D_PIVOT])
+    fw_resolve_corners(t, y, par, disc, hdr, smp, met, log, cnt)
     # an elastic bounce below the resolution: its rebound energy (the q'
     # part, I_G + M h^2 cos^2 q) against the rocking barrier's scale M g h
     rebound = 0.5 * (par[P_I_C] - par[P_MASS] * (par[P_H] * math.sin(y[2])) ** 2) * post * post
     scale = par[P_MASS] * par[P_G] * par[P_H]
     if is_chatter(t, post, opt, met) or \
             elastic_below_resolution(par[P_E_W], rebound, scale, opt):
-        fw_settle(t, y, par, disc, hdr, smp, log, cnt)
+        fw_settle(t, y, par, disc, hdr, smp, met, log, cnt)
     return RUNNING
 
 
