@@ -73,7 +73,7 @@ from .hybrid import (EPS, book_time, check_energy, final_status, init_metrics,
                      integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_CONTACT, EV_FLIGHT,
                      EV_IMPACT, EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST,
-                     MODE_ROCK,
+                     MODE_ROCK, MODE_WALL_REST,
                      M_IMPACTS, M_MAX_THETA_NEG, M_MAX_THETA_POS,
                      M_T_EXC_END, M_T_LAST_IMPACT, M_T_PASS_ALPHA, M_T_UPLIFT,
                      N_DISC, O_EARLY_EXIT, O_EPS_OMEGA, O_T0, RUNNING,
@@ -212,14 +212,15 @@ def corner_force(y, iq, side, par, in_contact):
 
 
 @jit
-def ts_accelerations(t, y, par, disc, hdr, smp):
-    """(y_c'', q'') from the 2x2 mass system of physics.md 5.1."""
+def ts_loads(t, y, par, disc, hdr, smp):
+    """(r_y, r_q, M h sin q): the right-hand sides of the 2x2 mass system
+    [[M, -M h sin q], [-M h sin q, I_C]] (y_c'', q'') = (r_y, r_q) of
+    physics.md 5.1, and its off-diagonal term."""
     ag, av = ground(t, hdr, smp)
     G = par[P_G] + av
     M = par[P_MASS]
     h = par[P_H]
     b = par[P_B]
-    IC = par[P_I_C]
     fR = corner_force(y, TS_IQ, 1.0, par, disc[D_RIGHT])
     fL = corner_force(y, TS_IQ, -1.0, par, disc[D_LEFT])
     sq = math.sin(y[2])
@@ -229,7 +230,15 @@ def ts_accelerations(t, y, par, disc, hdr, smp):
     # c term adds exactly 0 for a symmetric block
     rq = (M * G * h * sq - M * h * ag * cq - b * cq * (fR - fL)
           - par[P_B_SKEW] * cq * (fR + fL))
-    mh = M * h * sq
+    return ry, rq, M * h * sq
+
+
+@jit
+def ts_accelerations(t, y, par, disc, hdr, smp):
+    """(y_c'', q'') from the 2x2 mass system of physics.md 5.1."""
+    ry, rq, mh = ts_loads(t, y, par, disc, hdr, smp)
+    M = par[P_MASS]
+    IC = par[P_I_C]
     det = M * IC - mh * mh
     return (IC * ry + mh * rq) / det, (mh * ry + M * rq) / det
 
@@ -328,20 +337,25 @@ def ts_event(k, t, y, par, disc, hdr, smp):
 
 @jit
 def ts_set_mode(disc):
+    """Mode and pivot from the corner states; a block resting on the wall
+    (MODE_WALL_REST, two_spring_wall) keeps that mode, its pivot follows."""
     r = disc[D_RIGHT]
     lf = disc[D_LEFT]
     if r != 0 and lf != 0:
-        disc[D_MODE] = MODE_REST
-        disc[D_PIVOT] = 0
+        mode = MODE_REST
+        pivot = 0
     elif r != 0:
-        disc[D_MODE] = MODE_ROCK
-        disc[D_PIVOT] = 1
+        mode = MODE_ROCK
+        pivot = 1
     elif lf != 0:
-        disc[D_MODE] = MODE_ROCK
-        disc[D_PIVOT] = -1
+        mode = MODE_ROCK
+        pivot = -1
     else:
-        disc[D_MODE] = MODE_FLIGHT
-        disc[D_PIVOT] = 0
+        mode = MODE_FLIGHT
+        pivot = 0
+    if disc[D_MODE] != MODE_WALL_REST:
+        disc[D_MODE] = mode
+    disc[D_PIVOT] = pivot
 
 
 @jit_generic

@@ -295,13 +295,14 @@ def start_from_rest(t, y, par, disc, hdr, smp, met, log, cnt):
     return body_start_rocking_or_rest(t, y, par, disc, hdr, smp, met, log, cnt)
 
 
-@jit
-def settle_on_wall(t, y, par, disc, hdr, smp, log, cnt):
-    """End of a chatter sequence at the wall: rest on it if pressed."""
+@jit_generic
+def settle_on_wall_of(t, y, par, disc, hdr, smp, log, cnt, sides):
+    """End of a chatter sequence at the wall: rest on it if pressed (``sides``:
+    alpha and p of a pivot, side_alpha_p or block_alpha_p)."""
     w = par[P_WALL_SIDE]
     y[0] = w * par[P_THETA_W]
     y[1] = 0.0
-    if wall_rest_margin(t, par, hdr, smp, side_alpha_p) >= 0.0:
+    if wall_rest_margin(t, par, hdr, smp, sides) >= 0.0:
         disc[D_MODE] = MODE_WALL_REST
         disc[D_STATIC] = 1
         disc[D_WALL_REST] = 1
@@ -321,11 +322,12 @@ def release_from_wall(t, y, par, disc, log, cnt):
     log_event(log, cnt, t, EV_WALL_RELEASE, 0.0, 0.0, y[0], disc[D_PIVOT])
 
 
-@jit
-def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
-    """Wall impact: pivot kept, theta'+ = -e_w theta'- (physics.md 2)."""
+@jit_generic
+def wall_impact_of(t, y, par, disc, hdr, smp, opt, met, log, cnt, sides):
+    """Wall impact: pivot kept, theta'+ = -e_w theta'- (physics.md 2); a
+    chatter settles on the wall (``sides`` as :func:`settle_on_wall_of`)."""
     w = par[P_WALL_SIDE]
-    alpha, p = side_alpha_p(par, w)
+    alpha, p = sides(par, w)
     pre = y[1]
     post = -par[P_E_W] * pre
     y[0] = w * par[P_THETA_W]
@@ -336,8 +338,14 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     log_event(log, cnt, t, EV_WALL_IMPACT, pre, post, y[0], disc[D_PIVOT])
     if is_chatter(t, post, opt, met) or \
             rigid_bounce_unresolved(par[P_E_W], post, alpha, p, opt):
-        settle_on_wall(t, y, par, disc, hdr, smp, log, cnt)
+        settle_on_wall_of(t, y, par, disc, hdr, smp, log, cnt, sides)
     return RUNNING
+
+
+@jit
+def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
+    return wall_impact_of(t, y, par, disc, hdr, smp, opt, met, log, cnt,
+                          side_alpha_p)
 
 
 @jit

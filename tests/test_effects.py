@@ -82,7 +82,8 @@ EXPECTED = {
 MODEL_MODULES = {"fastrock.kernels.rigid", "fastrock.kernels.flexible", "fastrock.kernels.friction",
                  "fastrock.kernels.wall", "fastrock.kernels.foundation", "fastrock.kernels.flexible_friction",
                  "fastrock.kernels.flexible_wall", "fastrock.kernels.contact",
-                 "fastrock.kernels.foundation_flexible"}
+                 "fastrock.kernels.foundation_flexible", "fastrock.kernels.foundation_wall",
+                 "fastrock.kernels.foundation_friction"}
 
 
 def probe(case, tmp_path):

@@ -16,7 +16,6 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from scipy.integrate import quad
 
 import fastrock as fr
 from fastrock.model import foundation as F
@@ -30,6 +29,7 @@ from fastrock.analyses.freerocking.housner import housner_amplitudes, housner_ha
 from fastrock.analyses.freerocking.periods import rocking_quarter_period
 from fastrock.kernels import foundation as K
 from fastrock.kernels import layout as L
+from foundation_reference import rigid_limit_quarter_period
 
 BODY = fr.RigidBlock.rectangle(b=0.1, h=0.5)
 BLK = block_inertia(BODY, 1.0)
@@ -46,28 +46,6 @@ def ts_energy(h, blk, fnd):
         d = -(y - side * b * np.sin(q))
         V = V + 0.5 * fnd.k_v * np.maximum(d, 0.0) ** 2
     return T + V
-
-
-def rigid_limit_quarter_period(q0, blk):
-    """Release-to-impact time of the two-spring model as k_v -> inf: the block turns about
-    its right corner, which slides horizontally because the base centre is fixed
-    (y_c = b sin q): J(q) q'' + J'(q) q'^2/2 = -V'(q),
-    J = I_G + M (h^2 + b^2 cos^2 q - 2 b h sin q cos q), V = M g (b sin q + h cos q)."""
-    M, b, h, IG, g = blk.M, blk.b, blk.h, blk.I_G, blk.g
-
-    def J(q):
-        return IG + M * (h * h + (b * math.cos(q)) ** 2 - 2 * b * h * math.sin(q) * math.cos(q))
-
-    def V(q):
-        return M * g * (b * math.sin(q) + h * math.cos(q))
-
-    def f(u):      # q = q0 - u^2 removes the endpoint singularity
-        if u == 0.0:
-            return 2.0 * math.sqrt(J(q0) / (2.0 * M * g * (b * math.cos(q0) - h * math.sin(q0))))
-        q = q0 - u * u
-        return 2.0 * u * math.sqrt(J(q) / (2.0 * (V(q0) - V(q))))
-
-    return quad(f, 0.0, math.sqrt(q0), epsabs=1e-15, epsrel=1e-13)[0]
 
 
 # ------------------------------------------------------------------------------ layout

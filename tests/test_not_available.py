@@ -18,7 +18,7 @@ PULSE = fr.Pulse(1.0, 1.0)
 
 SCENES = [
     (FLEX, {"wall": fr.Wall(0.05), "friction": fr.Friction(0.5)}, "FlexibleBody"),
-    (BLOCK, {"foundation": FND, "wall": fr.Wall(0.05)}, "foundation"),
+    (BLOCK, {"foundation": FND, "wall": fr.Wall(0.05)}, "TwoSpringFoundation"),
     (BLOCK, {"foundation": FND, "friction": fr.Friction(0.5)}, "foundation"),
     (BLOCK, {"foundation": FND, "wall": fr.Wall(0.05), "friction": fr.Friction(0.5)}, "foundation"),
     (FLEX, {"foundation": FND}, "foundation"),
@@ -62,3 +62,13 @@ def test_sliding_on_the_two_spring_foundation_runs_and_the_others_say_where_it_d
         for fric in (fr.Friction(0.5), fr.Friction(0.5, lift_off="flight")):
             with pytest.raises(ValueError, match="TwoSpringFoundation only"):
                 registry.select(BLOCK, friction=fric, foundation=fnd)
+
+
+def test_a_wall_beside_the_two_spring_foundation_runs():
+    """Issue #13: foundation=TwoSpringFoundation or SwitchingFoundation with wall= is no longer
+    refused (models two_spring_wall, switching_wall, tests/test_foundation_wall.py); the linear
+    SDOF with a wall still is."""
+    fnd = fr.TwoSpringFoundation.from_vibration(BLOCK, 60.0, 0.05)
+    assert registry.select(BLOCK, wall=fr.Wall(0.05), foundation=fnd).name == "two_spring_wall"
+    fnd = fr.SwitchingFoundation.from_vibration(BLOCK, 60.0, 0.05)
+    assert registry.select(BLOCK, wall=fr.Wall(0.05), foundation=fnd).name == "switching_wall"

@@ -51,7 +51,8 @@ def test_every_entry_names_its_kernels_and_columns():
     assert set(registry.MODELS) == {"rigid", "rigid_body", "rigid_wall", "rigid_friction", "contact", "contact_body",
                                     "flexible",
                                     "flexible_friction", "flexible_wall", "flexible_flight", "two_spring", "switching", "wall_body",
-                                    "linear_sdof", "two_spring_friction", "flexible_two_spring"}
+                                    "linear_sdof", "two_spring_friction", "flexible_two_spring",
+                                    "two_spring_wall", "switching_wall"}
     for m in registry.MODELS.values():
         mod = m.load()
         assert callable(getattr(mod, m.simulate_entry)) and callable(getattr(mod, m.sweep_entry))

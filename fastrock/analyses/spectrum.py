@@ -276,8 +276,9 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
     opt = solver.options(0.0, early_exit)
     if foundation is not None:
         from fastrock.model.foundation import block_inertia
-        from fastrock.running.foundation import with_slide
-        y0 = with_slide(spec, foundation.initial_state(block_inertia(body, mass), 0.0, 0.0, ground))
+        from fastrock.running.foundation import check_wall_start, with_slide
+        y0 = check_wall_start(spec, with_slide(spec, foundation.initial_state(block_inertia(body, mass), 0.0, 0.0,
+                                                                              ground)), wall)
     else:
         y0 = np.zeros(spec.n_state)
         if ground is not None:

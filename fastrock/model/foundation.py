@@ -704,3 +704,86 @@ def foundation_friction_par(body, foundation, friction, mass=None):
     return par
 
 
+
+
+def wall_face(body, blk, wall):
+    """(a, H) [m]: the wall-side top corner from the base point below the centre of mass, in the
+    body frame: a horizontal (b for a block, b2 or b1 for an asymmetric RigidBody), H up (2h, or
+    h + :meth:`RigidBody.wall_face_top`)."""
+    a = blk.b + wall.side * blk.skew
+    if isinstance(body, RigidBody) and not body.is_symmetric:
+        return a, blk.h + body.wall_face_top(wall.side)
+    return a, 2.0 * blk.h
+
+
+def wall_limit_angle(body, blk, wall):
+    """Rotation theta_w [rad] toward the wall at which the two-spring block's top corner on the
+    wall side touches a tall wall (``math.inf``: never, before the corner's reach a' = hypot(a, H)).
+
+    The base point below the centre of mass is held horizontally, so that corner is at
+    ``a cos(theta) + H sin(theta)`` from it (toward the wall), whatever y_c: contact at
+    ``a cos(theta_w) + H sin(theta_w) = a + d``, i.e. ``theta_w = asin((a + d)/a') - atan2(a, H)``.
+    (The rigid wall model turns about the pivot corner: ``H sin(theta_w) = d``; here the corner
+    also comes back by ``a (1 - cos theta)``, so theta_w is a little larger.)
+
+    Raises ValueError for what the model leaves out: gap 0, a wall lower than the body's
+    wall-side face, wall friction and a rounded top."""
+    if wall.gap == 0.0:
+        raise ValueError("wall: gap = 0 is not available on a flexible foundation (the block's base would "
+                         "touch the wall as its corner springs compress); give gap > 0")
+    a, H = wall_face(body, blk, wall)
+    if wall.height is not None and wall.height < H:
+        raise ValueError(f"wall: height = {wall.height:.6g} m is lower than the body's face toward the wall "
+                         f"({H:.6g} m): on a flexible foundation only a wall at least as tall as the body is "
+                         "modelled (its top corner touches the wall); give height=None or height >= "
+                         f"{H:.6g}")
+    if wall.friction != 0.0:
+        raise ValueError("wall: friction > 0 is not available on a flexible foundation (its wall is "
+                         "frictionless)")
+    if getattr(body, "top_radius", None) is not None:
+        raise ValueError("wall: a rounded top (top_radius) is not available on a flexible foundation (its "
+                         "wall contact point is the square top corner)")
+    reach = math.hypot(a, H)
+    if a + wall.gap >= reach:
+        return math.inf
+    return math.asin((a + wall.gap) / reach) - math.atan2(a, H)
+
+
+def foundation_wall_par(body, foundation, wall, mass=None):
+    """Parameter vector of a block on the two-spring foundation beside a wall (kernels/
+    foundation_wall.py): :func:`foundation_par` with the wall side, theta_w
+    (:func:`wall_limit_angle`) and e_w in the rigid layout's wall slots."""
+    from fastrock.kernels.layout import P_E_W, P_THETA_W, P_WALL_SIDE
+    par = foundation_par(body, foundation, mass)
+    par[P_WALL_SIDE] = float(wall.side)
+    par[P_THETA_W] = wall_limit_angle(body, block_inertia(body, mass), wall)
+    par[P_E_W] = wall.restitution
+    return par
+
+
+def switching_wall_par(body, foundation, wall, mass=None):
+    """Parameter vector of a block on the switching foundation beside a wall (kernels/
+    foundation_wall.py): its rocking phase is Housner's, so the wall is the rigid wall model's
+    (:meth:`Wall.limit_angle`: tall or short wall, rounded top), reached while rocking on the pivot
+    near the wall.
+
+    Raises ValueError for gap 0, wall friction, and a wall the contact phase could reach
+    (theta_w <= theta_y = M g b / k_t: the block turns about its base centre there)."""
+    from fastrock.kernels.layout import P_E_W, P_THETA_W, P_THETA_Y, P_WALL_SIDE
+    if wall.gap == 0.0:
+        raise ValueError("wall: gap = 0 is not available on a flexible foundation (Hogan's one-sided rocking "
+                         "needs the block resting against the wall on rigid ground); give gap > 0")
+    if wall.friction != 0.0:
+        raise ValueError("wall: friction > 0 is not available on a flexible foundation (its wall is "
+                         "frictionless)")
+    par = foundation_par(body, foundation, mass)
+    tw = wall.limit_angle(body)
+    if not tw > par[P_THETA_Y]:
+        raise ValueError(f"wall: gap = {wall.gap:.6g} m puts the wall at theta_w = {tw:.6g} rad, not beyond the "
+                         f"switching model's uplift rotation theta_y = {par[P_THETA_Y]:.6g} rad: its contact phase "
+                         "(rotation about the base centre) would reach the wall, which is not modelled; give a "
+                         "larger gap or use TwoSpringFoundation")
+    par[P_WALL_SIDE] = float(wall.side)
+    par[P_THETA_W] = tw
+    par[P_E_W] = wall.restitution
+    return par

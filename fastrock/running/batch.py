@@ -77,9 +77,9 @@ def _prepare(i, scene, early_exit):
         ground.check_lift_off(body, X.channel_peak(hdr, smp), spec.name, vertical)
     if scene.foundation is not None:
         from fastrock.model.foundation import block_inertia
-        from fastrock.running.foundation import with_slide
-        y0 = with_slide(spec, scene.foundation.initial_state(block_inertia(body, mass), scene.theta0,
-                                                             scene.dtheta0, ground))
+        from fastrock.running.foundation import check_wall_start, with_slide
+        y0 = check_wall_start(spec, with_slide(spec, scene.foundation.initial_state(
+            block_inertia(body, mass), scene.theta0, scene.dtheta0, ground)), scene.wall)
     else:
         y0 = initial_state(spec, body, scene.theta0, scene.dtheta0, scene.wall, ground)
     return spec, y0, hdr, smp, opt, solver

@@ -23,17 +23,17 @@ from fastrock.model.ground import as_ground
 
 #: Contact names of the history's ``contact`` column, by kernel mode.
 CONTACT_NAMES = {L.MODE_REST: "contact", L.MODE_ROCK: "rock", L.MODE_FLIGHT: "flight",
-                 L.MODE_SLIDE: "slide", L.MODE_SLIDE_ROCK: "slide-rock"}
+                 L.MODE_SLIDE: "slide", L.MODE_SLIDE_ROCK: "slide-rock", L.MODE_WALL_REST: "wall"}
 
 
 
-def foundation_spec(body, foundation, mass=None, friction=None):
+def foundation_spec(body, foundation, mass=None, friction=None, wall=None):
     """KernelSpec (registry entry, parameter vector) and the block's mass properties."""
     from fastrock.running.registry import select
     if not isinstance(body, (RigidBlock, RigidBody, FlexibleBody)):
         raise ValueError(f"foundation models carry a RigidBlock, RigidBody or FlexibleBody, got "
                          f"{type(body).__name__}")
-    spec = select(body, friction=friction, foundation=foundation, mass=mass)
+    spec = select(body, wall=wall, friction=friction, foundation=foundation, mass=mass)
     return spec, block_inertia(body, mass)
 
 
@@ -65,6 +65,20 @@ def integrate_foundation(spec, y0, hdr, smp, opt, te, cap):
         return code, hist_t[:nh], hist_y[:nh], hist_d[:nh], log[:nl], met, cnt
 
 
+def check_wall_start(spec, y0, wall):
+    """Reject a start on the foundation (the release, a static tilt on a slope or an asymmetric
+    body's rest tilt) that penetrates the wall (theta_w of the spec's parameter vector)."""
+    if wall is not None:
+        _check_wall_start(y0[spec.theta_index], wall, spec.par[L.P_THETA_W])
+    return y0
+
+
+def _check_wall_start(theta0, wall, theta_w):
+    if wall.side * theta0 > theta_w:
+        raise ValueError(f"theta0 = {theta0!r} penetrates the wall: on the foundation, with the wall on side "
+                         f"{wall.side:+d}, the block must satisfy side*theta0 <= theta_w = {theta_w:.6g} rad")
+
+
 def _check_release(body, theta0, allow_overturn):
     if abs(theta0) >= body.theta_over:
         raise ValueError(f"theta0 must satisfy |theta0| < theta_over = {body.theta_over}, "
@@ -81,7 +95,7 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
                         friction=None, theta0=0.0, dtheta0=0.0, duration=None, t_after=DEFAULT_T_AFTER,
                         t_eval=None, solver=None, rtol=None, atol=None, dt=None,
                         max_steps=None, allow_overturn=False, history_capacity=None, ground=None,
-                        early_exit=False):
+                        early_exit=False, wall=None):
     """Simulate a rigid block on a flexible foundation (or its free rocking).
 
     Parameters
@@ -110,6 +124,12 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
         starts at rest in its static equilibrium (a tilt downhill).
     allow_overturn : bool
         Allow ``|theta0| >= alpha`` (a release that overturns); otherwise ValueError.
+    wall : Wall, optional
+        A rigid rear wall, gap > 0 and frictionless (docs: theory/foundation, "Rear wall").
+        TwoSpringFoundation: a wall at least as tall as the body, touched by the top corner at
+        :func:`fastrock.model.foundation.wall_limit_angle`. SwitchingFoundation: the rigid wall
+        model's wall while rocking (:func:`fastrock.model.foundation.switching_wall_par`).
+        LinearVibration takes none.
     duration, t_after, t_eval, solver, rtol, atol, dt, max_steps, ground, early_exit :
         As in :func:`fastrock.simulate` (the two-spring model's early decisions: after the
         excitation, on level ground, a symmetric block that can no longer lift off or overturn).
@@ -144,7 +164,7 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
     vertical = X.as_excitation(vertical, "vertical")
     theta0 = V.finite("theta0", theta0)
     dtheta0 = V.finite("dtheta0", dtheta0)
-    spec, blk = foundation_spec(body, foundation, mass, friction)
+    spec, blk = foundation_spec(body, foundation, mass, friction, wall)
     ground = as_ground(ground)
     if ground is not None:
         ground.check_scene(body, foundation=foundation)
@@ -152,6 +172,7 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
     hdr, smp, opt, te, cap = run_inputs(body, excitation, vertical, duration, t_after, t_eval,
                                         history_capacity, solver, V.boolean("early_exit", early_exit), ground)
     y0 = with_slide(spec, foundation.initial_state(blk, theta0, dtheta0, ground))
+    check_wall_start(spec, y0, wall)
     code, t, Y, D, lg, met, cnt = integrate_foundation(spec, y0, hdr, smp, opt, te, cap)
     if solver.dt:
         checked = None
@@ -170,10 +191,11 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
         "t": t, "a_g": ag, "a_v": av, "theta": th, "theta_dot": Y[:, it + 1],
         "theta_ratio": th / body.alpha,
         "contact": [CONTACT_NAMES.get(int(m), str(m)) for m in mode],
-        "pivot": np.where((mode == L.MODE_ROCK) | (mode == L.MODE_SLIDE_ROCK), D[:, L.D_PIVOT], 0),
+        "pivot": np.where((mode == L.MODE_ROCK) | (mode == L.MODE_SLIDE_ROCK) | (mode == L.MODE_WALL_REST),
+                          D[:, L.D_PIVOT], 0),
         "lift_off": (mode != L.MODE_REST) & (mode != L.MODE_SLIDE),
     }
-    if spec.name in ("two_spring", "two_spring_friction", "flexible_two_spring"):
+    if spec.name in ("two_spring", "two_spring_friction", "flexible_two_spring", "two_spring_wall"):
         cols["y"] = Y[:, 0]
         cols["y_dot"] = Y[:, 1]
         for side, slot, name in ((1.0, D_RIGHT, "force_right"), (-1.0, D_LEFT, "force_left")):
@@ -204,7 +226,7 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
         if outcome == "safe" and abs(metrics["residual_slide"]) > friction.slide_tolerance:
             outcome = "slide"
     effects = (("flexible",) if spec.flexible else ()) + (f"foundation:{foundation.model}",) + \
-        (("vertical",) if vertical is not None else ())
+        (("wall",) if wall is not None else ()) + (("vertical",) if vertical is not None else ())
     if spec.friction:
         effects = effects + ("friction",)
     return SimulationResult(history=history, events=events, outcome=outcome,

@@ -145,7 +145,9 @@ NOT_AVAILABLE = {
         "a wall together with friction is available for RigidBlock only (the contact model); a "
         "FlexibleBody takes wall= or friction=, not both yet (issue #13)",
     ("rigid", frozenset({"foundation", "wall"})):
-        "a wall beside a block on a flexible foundation is not available yet (issue #13)",
+        "a wall beside a block on a flexible foundation runs with foundation=TwoSpringFoundation(...) or "
+        "SwitchingFoundation(...); LinearVibration with wall= is not available (it never lifts off and "
+        "turns about its base centre; issue #13)",
     ("rigid", frozenset({"foundation", "friction"})):
         "sliding on a flexible foundation is available on TwoSpringFoundation only "
         "(two_spring_friction); the switching and linear SDOF models turn the block about its "
@@ -256,7 +258,7 @@ def lookup(body, effects):
             raise ValueError(
                 "an asymmetric RigidBody (b1 != b2 or h1 != h2) runs the two-sided rocking model, with "
                 "wall= alone the wall model, with friction= or Friction(lift_off='flight') (and a wall) the "
-                "contact model, and with foundation=TwoSpringFoundation the two-spring model; "
+                "contact model, and with foundation=TwoSpringFoundation (and a wall) the two-spring model; "
                 f"{', '.join(_EFFECT_FIELDS[k] for k in sorted(generic))} together is not available for it "
                 "yet; a symmetric RigidBody runs everywhere as its RigidBlock")
         if "foundation" in generic and kind == "flexible" and len(generic) == 1:
@@ -347,6 +349,16 @@ def _foundation(body, fx, mass):
 def _foundation_friction(body, fx, mass):
     from fastrock.model.foundation import foundation_friction_par
     return foundation_friction_par(body, fx["foundation"], fx.get("friction") or fx.get("flight"), mass)
+
+
+def _foundation_wall(body, fx, mass):
+    from fastrock.model.foundation import foundation_wall_par
+    return foundation_wall_par(body, fx["foundation"], fx["wall"], mass)
+
+
+def _switching_wall(body, fx, mass):
+    from fastrock.model.foundation import switching_wall_par
+    return switching_wall_par(body, fx["foundation"], fx["wall"], mass)
 
 
 _RIGID_CLI = ("--alpha", "--p", "--b", "--h", "--e")
@@ -488,3 +500,23 @@ register(Model(
     toml_keys=("body", "foundation"),
     summary="flexible body (elastic column on a rigid base with mass) on two tensionless corner "
             "spring-dashpots: vertical and rocking motion of the base with the column's vibration"))
+register(Model(
+    "two_spring_wall", "foundation_wall", "rigid", frozenset({"wall", "foundation:two_spring"}),
+    ("y", "y_dot", "theta", "theta_dot"), _foundation_wall,
+    columns=_FOUNDATION_COLUMNS + ("toward_wall", "max_rotation_toward_wall", "max_rotation_away_from_wall"),
+    outcomes=("safe", "mode1", "mode2", "leaning", "failed"),
+    cli_options=_RIGID_CLI + _WALL_CLI + ("--foundation", "--foundation-omega", "--foundation-zeta", "--mass"),
+    toml_keys=("body", "wall", "foundation"),
+    summary="rigid block on two tensionless corner spring-dashpots beside a rear wall (its top corner "
+            "touches a tall wall at a gap > 0)"))
+# the asymmetric RigidBody (level base, outline for its wall-side face) in the same kernel
+_BY_SCENE[("rigid_body", frozenset({"wall", "foundation:two_spring"}))] = MODELS["two_spring_wall"]
+register(Model(
+    "switching_wall", "foundation_wall", "rigid", frozenset({"wall", "foundation:switching"}),
+    ("theta", "theta_dot"), _switching_wall,
+    columns=_FOUNDATION_COLUMNS + ("toward_wall", "max_rotation_toward_wall", "max_rotation_away_from_wall"),
+    outcomes=("safe", "mode1", "mode2", "leaning", "flight", "failed"),
+    cli_options=_RIGID_CLI + _WALL_CLI + ("--foundation", "--foundation-omega", "--foundation-zeta", "--mass"),
+    toml_keys=("body", "wall", "foundation"),
+    summary="rigid block switching between a rotational spring and Housner rocking beside a rear wall "
+            "(the rigid wall model's contact and impact while rocking toward it)"))

@@ -79,7 +79,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
         length and start, unless ``resample_vertical=True`` (linear
         interpolation onto the horizontal samples).
     wall : Wall, optional
-        One-sided rocking against a rear wall.
+        One-sided rocking against a rear wall; with ``foundation`` (TwoSpringFoundation or
+        SwitchingFoundation) the wall stands beside the block on its foundation.
     friction : Friction, optional
         Coulomb friction (sliding and slide-rocking); None or mu_s = inf:
         no sliding degree of freedom at all.  With a TwoSpringFoundation the
@@ -143,7 +144,8 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
                                    theta0=theta0,
                                    dtheta0=dtheta0, duration=duration, t_after=t_after, t_eval=t_eval,
                                    solver=make_solver(solver, rtol, atol, dt, **kw), allow_overturn=True,
-                                   history_capacity=history_capacity, ground=ground, early_exit=early_exit)
+                                   history_capacity=history_capacity, ground=ground, early_exit=early_exit,
+                                   wall=wall)
     solver = make_solver(solver, rtol, atol, dt, **kw)
     excitation = X.as_excitation(excitation)
     vertical = X.as_excitation(vertical, "vertical")

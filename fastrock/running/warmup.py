@@ -47,6 +47,10 @@ def _example(name):
         "two_spring_friction": (block, {"foundation": TwoSpringFoundation.from_vibration(block, 30.0, 0.05),
                                         "friction": Friction(0.3)}),
         "flexible_two_spring": (flex, {"foundation": TwoSpringFoundation.from_vibration(flex, 30.0, 0.05)}),
+        "two_spring_wall": (block, {"foundation": TwoSpringFoundation.from_vibration(block, 30.0, 0.05),
+                                    "wall": Wall(gap=0.01)}),
+        "switching_wall": (block, {"foundation": SwitchingFoundation.from_vibration(block, 30.0, 0.05),
+                                   "wall": Wall(gap=0.05)}),
     }[name]
 
 
@@ -112,7 +116,8 @@ def is_ready(kernel):
 #: guide/install, "Compilation and the kernel cache"); a quiet machine takes about two thirds of it.
 TYPICAL_COMPILE_SECONDS = {"rigid": 34, "rigid_body": 27, "rigid_wall": 31, "wall_body": 31, "rigid_friction": 33, "contact": 67, "contact_body": 67,
                            "flexible": 31, "flexible_friction": 43, "flexible_wall": 40, "flexible_flight": 52, "two_spring": 30, "switching": 30,
-                           "linear_sdof": 29, "two_spring_friction": 37, "flexible_two_spring": 31}
+                           "linear_sdof": 29, "two_spring_friction": 37, "flexible_two_spring": 31,
+                           "two_spring_wall": 35, "switching_wall": 35}
 
 
 def compile_notice(name, kernel=None):

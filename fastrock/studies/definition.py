@@ -292,6 +292,7 @@ class Study:
             raise StudyError(str(exc)) from None
         _check_intensity(levels, self.measure, records, bodies)
         from fastrock.model.foundation import block_inertia as _block_inertia
+        from fastrock.running.foundation import check_wall_start as _check_wall_start
         from fastrock.running.foundation import with_slide
         specs, y0s = {}, {}
         for bi, body in enumerate(bodies):
@@ -304,9 +305,8 @@ class Study:
                         effects[vi]["ground"].check_scene(body, friction=friction, flexible=specs[bi, vi].flexible,
                                                           foundation=foundation)
                     y0s[bi, vi] = (np.zeros(specs[bi, vi].n_state) if foundation is None else
-                                   with_slide(specs[bi, vi],
-                                              foundation.initial_state(_block_inertia(body, mass), 0.0, 0.0,
-                                                                       effects[vi].get("ground"))))
+                                   _check_wall_start(specs[bi, vi], with_slide(specs[bi, vi], foundation.initial_state(
+                                       _block_inertia(body, mass), 0.0, 0.0, effects[vi].get("ground"))), wall))
                 except (TypeError, ValueError) as exc:
                     raise StudyError(f"body {bi} with variant {names[vi]!r}: {exc}") from None
                 if effects[vi].get("ground") is not None:     # a flexible column at its static deflection
