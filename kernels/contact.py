@@ -2712,12 +2712,17 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
         solve_targets(y, vgx, vgy, y[1], 0.0, par, CS_OPEN, CS_OPEN,
                       stw, tgt, post)
     elif mode == MODE_ROCK and not np.isfinite(par[C_MU_S]):
-        # mu = inf: the pivot is held (bilateral, as the single-DOF map of
-        # kernels/wall.py: theta'+ = -e_w theta'-), whatever the sign of its
-        # normal impulse
-        solve_targets(y, vgx, vgy, y[1], 0.0, par,
-                      CS_STICK if j == 0 else CS_OPEN,
-                      CS_STICK if j == 1 else CS_OPEN, stw, tgt, post)
+        # mu = inf: the pivot is held (bilateral), whatever the sign of its
+        # normal impulse.  One degree of freedom, in which the wall's normal
+        # velocity is linear in theta': the map is theta'+ = -e_w theta'-
+        # exactly, as in kernels/wall.py, with the CM velocity of the held
+        # pivot.  (The impulse solve gave the same map to rounding amplified
+        # like 1 / sin(theta): energy rises of 8e-12 at e_w = 1.)
+        tmp = y.copy()
+        tmp[1] = -e_w * y[1]
+        project_single(j, tmp, par, True)
+        post[0], post[1] = cm_velocity(tmp, par)
+        post[2] = tmp[1]
     elif wall_frictional(par):
         imp = np.zeros(4)
         separated = wall_pivot_impact_fr(j, y, par, vgx, vgy, tgt, before,

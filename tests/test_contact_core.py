@@ -513,7 +513,9 @@ def test_base_corner_wall_impact_never_creates_energy(b, h, mu, e_w, side, th, o
     _g, vn, _vt = C.point_kin(C.K_NEAR, y, par)
     assume(vn < -1e-6)
     _g, _vn, vs = C.point_kin(j, y, par)
-    C.set_single(j, C.CS_STICK if vs == 0.0 else C.slip_state(1 if vs > 0 else -1), disc)
+    # a slip speed at or below V_TOL is a stick, as the kernel's own mode picks take it (a slip
+    # state at 6e-241 m/s, which no pick makes, gave a relative rise of 8e-12 at theta = 1/8)
+    C.set_single(j, C.CS_STICK if abs(vs) <= C.V_TOL else C.slip_state(1 if vs > 0 else -1), disc)
     before = C.kinetic_energy(y, par)
     status = C.wall_impact(0.5, y, par, disc, hdr, smp, opt, met, log, cnt, C.K_NEAR)
     assert status in (L.RUNNING, L.FAIL_INCONSISTENT)
