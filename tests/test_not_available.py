@@ -24,6 +24,12 @@ SCENES = [
     (FLEX, {"foundation": FND}, "foundation"),
     (ASYM, {"foundation": FND}, "foundation"),
     (UNEVEN, {"friction": fr.Friction(0.5)}, "h1 = "),
+    (BLOCK, {"foundation": fr.TwoSpringFoundation(1e4), "wall": fr.Wall(0.05), "friction": fr.Friction(0.5)},
+     "foundation"),
+    (FLEX, {"foundation": fr.TwoSpringFoundation(1e4), "wall": fr.Wall(0.05)}, "FlexibleBody"),
+    (FLEX, {"foundation": fr.TwoSpringFoundation(1e4), "friction": fr.Friction(0.5)}, "FlexibleBody"),
+    (BLOCK, {"foundation": fr.TwoSpringFoundation(1e4), "friction": fr.Friction(float("inf"), lift_off="flight")},
+     "never slips"),
 ]
 
 
@@ -31,10 +37,13 @@ def test_readme_lists_the_refused_combinations():
     text = " ".join(README.split())
     assert "**Not available yet**" in text
     for phrase in ("a `FlexibleBody` with `wall=` and `friction=` together",
-                   "`foundation=` together with `wall=` or `friction=`",
-                   "a `FlexibleBody` on a foundation, and an asymmetric `RigidBody` on the switching or "
-                   "linear foundation (it runs on `TwoSpringFoundation`)",
-                   ):
+                   "`foundation=` together with both `wall=` and `friction=`",
+                   "a `FlexibleBody` on a foundation with `wall=` or `friction=`, on a slope, or on the "
+                   "switching or linear foundation, and an asymmetric `RigidBody` on the switching or linear "
+                   "foundation (both run on `TwoSpringFoundation`)",
+                   "`friction=` on the switching or linear foundation, and `Friction(inf, lift_off=\"flight\")` "
+                   "on any foundation",
+                   "`LinearVibration` with `wall=`"):
         assert phrase in text, phrase
     # pivots at different heights are ruled out on one ground plane, with the turn that fixes it
     ruled_out = text.split("**Ruled out by the physics**")[1]
