@@ -332,7 +332,16 @@ def test_frictionless_wall_mu_inf_reproduces_wall_kernel():
         assert r["status"] == ref.status_code, key
         seen.add(ref.outcome)
         assert r["met"][L.M_MAX_ABS_THETA] == pytest.approx(ref.metrics["max_rotation"], rel=1e-6), key
-        assert r["met"][L.M_WALL_IMPACTS] == ref.metrics["wall_impacts"], key
+        # The same impacts, up to the Zeno tail of a bounce sequence on the wall, which each model's
+        # rest rule cuts at its own level: the wall kernel at eps_omega, the contact kernel once the
+        # bounces are held at the rounding level (596f9dd).  The wall kernel's extra impacts must be
+        # that tail: speeds below 1e-5 of the run's largest wall impact.
+        n_c = int(r["met"][L.M_WALL_IMPACTS])
+        walls = ref.events[ref.events["event"] == "wall-impact"]
+        assert n_c <= len(walls) == ref.metrics["wall_impacts"], key
+        if n_c < len(walls):
+            tail = walls["velocity_before"].abs().to_numpy()
+            assert tail[n_c:].max() < 1e-5 * tail.max(), (key, tail[n_c:].max(), tail.max())
     assert {"safe", "mode1", "leaning"} <= seen, seen
 
 

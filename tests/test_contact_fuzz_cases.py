@@ -164,3 +164,24 @@ def test_contact_2027_243_stick_slip_at_the_cone_edge_does_not_loop():
                                   friction=fric, solver=solver, t_after=10.0)
     assert runs[1].status == runs[-1].status == "overturn:mode1"
     assert math.isclose(runs[1].metrics["max_rotation"], runs[-1].metrics["max_rotation"], rel_tol=1e-9)
+
+
+@pytest.mark.xfail(strict=True, reason="issue #14, not fixed yet: the wall-rest margin of a body leaning over "
+                                       "a wall lower than it is negative while the motion turns back into the "
+                                       "wall, so wall impacts of 7e-14 rad/s repeat until the step budget")
+def test_contact_14_0_leaning_over_a_short_wall_ends_definite():
+    """contact:14:0 (the CI fuzz sample's first batch): a slender block (b = 0.61 mm, h = 51.5 mm),
+    mu = inf with flight, a one-cosine pulse of 20.4 g tan(alpha) at omega_p/p = 3.25 (sign -1),
+    wall 24.9 mm away and 13.6 mm high, e_w = 0.651, rtol 3.1e-9.  It tips over the wall's top
+    edge to theta = 1.07 rad; there the run repeats wall impacts at one instant (pre 6.9e-14,
+    post -4.5e-14 rad/s) until any step budget runs out.  A budget of 2e4 steps shows it in a
+    second; the fix must end it in a definite state (resting on the edge, or flying off it)."""
+    body = RigidBlock.rectangle(b=0.0006098645847118941, h=0.051523539017182485)
+    wall = Wall(0.024917468486642905, side=1, height=0.013643655604542835, restitution=0.65072412584395)
+    pulse = Pulse(20.378378087116324, 3.248909791511448, -1, "one-cosine", amplitude_unit="g_tan_alpha",
+                  frequency_unit="omega_p/p")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        run = simulate(body, pulse, wall=wall, friction=Friction(math.inf, lift_off="flight"),
+                       solver=Solver(rtol=3.1257968710463934e-09, max_steps=20000))
+    assert not run.status.startswith("failed"), (run.status, run.metrics["wall_impacts"])
