@@ -127,8 +127,8 @@ def simulate_foundation(body, foundation, excitation=None, *, mass=None, vertica
     wall : Wall, optional
         A rigid rear wall, gap > 0 and frictionless (docs: theory/foundation, "Rear wall").
         TwoSpringFoundation: a wall at least as tall as the body, touched by the top corner at
-        :func:`fastrock.model.foundation.wall_limit_angle`. SwitchingFoundation: the rigid wall
-        model's wall while rocking (:func:`fastrock.model.foundation.switching_wall_par`).
+        ``fastrock.model.foundation.wall_limit_angle``. SwitchingFoundation: the rigid wall
+        model's wall while rocking (``fastrock.model.foundation.switching_wall_par``).
         LinearVibration takes none.
     duration, t_after, t_eval, solver, rtol, atol, dt, max_steps, ground, early_exit :
         As in :func:`fastrock.simulate` (the two-spring model's early decisions: after the
