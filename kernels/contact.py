@@ -2018,10 +2018,18 @@ def wall_rest_margin(t, y, par, disc, hdr, smp):
         y, bx, by, bw, 0.0, par, st0, st1, st2, acc)
     N = N1 if j == 1 else N0
     F = F1 if j == 1 else F0
-    m = min(N2, N)
     mu = par[C_MU_S]
     if np.isfinite(mu):
-        m = min(m, mu * N - abs(F))
+        m = min(N2, N, mu * N - abs(F))
+    else:
+        # mu = inf holds the pivot as in a rocking phase (K_LIFT): it lets
+        # go only where the flight is consistent, here the flight along the
+        # wall (``tip_off_pivot``).  A rest whose pivot needs a pull, with
+        # that flight inconsistent, is otherwise no mode at all: the body
+        # rocked back into the wall and repeated zero-velocity wall impacts
+        # for ever (contact:14:0, a body leaning over a short wall's edge)
+        an, _N2f = flight_wall_normal_acc(j, t, y, par, hdr, smp)
+        m = min(N2, max(N, -an) if np.isfinite(an) else N)
     if not ok:
         return -1.0
     return m
@@ -2782,7 +2790,47 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
         if top_ladder(j, t, y, par, disc, hdr, smp):
             log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
             return RUNNING
+        if tip_off_pivot(j, t, y, par, disc, hdr, smp, met, log, cnt):
+            return RUNNING
     return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
+@jit
+def flight_wall_normal_acc(j, t, y, par, hdr, smp):
+    """Normal acceleration of base corner j (> 0: off the ground) in flight
+    with the top corner's wall contact closed (frictionless), and that
+    mode's wall force (NaN if the solve fails)."""
+    acc = np.empty(3)
+    ok, _N0, _F0, _N1, _F1, N2, _F2 = mode_solve(
+        t, y, par, CS_OPEN, CS_OPEN, wall_state(2, 0), hdr, smp, acc)
+    if not ok:
+        return -np.inf, np.nan
+    an, _at = contact_acc(j, y, par, acc)
+    return an, N2
+
+
+@jit
+def tip_off_pivot(j, t, y, par, disc, hdr, smp, met, log, cnt):
+    """At rest with the top corner on the wall, where neither the sticking
+    rest nor ``top_ladder`` is admissible: if pivot j would have to pull
+    the ground (a body leaning over a short wall's edge with its CM beyond
+    it see-saws on the edge) and, in flight with the wall contact closed,
+    the wall pushes and the pivot accelerates off the ground, the pivot
+    lifts off and the body flies along the wall (``pick_wall_flight``).
+    Returns False if that flight is not consistent, or for a finite mu
+    (whose rest ends by the normal force itself: ``pick_single``)."""
+    if np.isfinite(par[C_MU_S]):
+        return False
+    an, N2 = flight_wall_normal_acc(j, t, y, par, hdr, smp)
+    # the same sign test as wall_rest_margin's -an: a rest that ends there
+    # must find this flight consistent, or it rocks back into the wall
+    if not (N2 > 0.0 and an > 0.0):
+        return False
+    enter_flight(t, y, par, disc, met, log, cnt)
+    pick_wall_flight(2, t, y, par, disc, hdr, smp, 0)
+    if disc[D_CS2] != CS_OPEN:
+        log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], disc[D_PIVOT])
+    return True
 
 
 @jit
@@ -2880,6 +2928,8 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             s = disc[D_PIVOT]
             j = 1 if s > 0 else 0
             log_event(log, cnt, t, EV_WALL_RELEASE, 0.0, 0.0, y[0], s)
+            if tip_off_pivot(j, t, y, par, disc, hdr, smp, met, log, cnt):
+                return RUNNING
             return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
                                False)
         return pick_flat(t, y, par, disc, hdr, smp, met, log, cnt)

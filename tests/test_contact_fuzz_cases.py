@@ -166,22 +166,52 @@ def test_contact_2027_243_stick_slip_at_the_cone_edge_does_not_loop():
     assert math.isclose(runs[1].metrics["max_rotation"], runs[-1].metrics["max_rotation"], rel_tol=1e-9)
 
 
-@pytest.mark.xfail(strict=True, reason="issue #14, not fixed yet: the wall-rest margin of a body leaning over "
-                                       "a wall lower than it is negative while the motion turns back into the "
-                                       "wall, so wall impacts of 7e-14 rad/s repeat until the step budget")
+def _leaning_over_a_short_wall(omega_ratio):
+    body = RigidBlock.rectangle(b=0.0006098645847118941, h=0.051523539017182485)
+    wall = Wall(0.024917468486642905, side=1, height=0.013643655604542835, restitution=0.65072412584395)
+    pulse = Pulse(20.378378087116324, omega_ratio, -1, "one-cosine", amplitude_unit="g_tan_alpha",
+                  frequency_unit="omega_p/p")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return simulate(body, pulse, wall=wall, friction=Friction(math.inf, lift_off="flight"),
+                        solver=Solver(rtol=3.1257968710463934e-09, max_steps=20000))
+
+
 def test_contact_14_0_leaning_over_a_short_wall_ends_definite():
     """contact:14:0 (the CI fuzz sample's first batch): a slender block (b = 0.61 mm, h = 51.5 mm),
     mu = inf with flight, a one-cosine pulse of 20.4 g tan(alpha) at omega_p/p = 3.25 (sign -1),
     wall 24.9 mm away and 13.6 mm high, e_w = 0.651, rtol 3.1e-9.  It tips over the wall's top
-    edge to theta = 1.07 rad; there the run repeats wall impacts at one instant (pre 6.9e-14,
-    post -4.5e-14 rad/s) until any step budget runs out.  A budget of 2e4 steps shows it in a
-    second; the fix must end it in a definite state (resting on the edge, or flying off it)."""
-    body = RigidBlock.rectangle(b=0.0006098645847118941, h=0.051523539017182485)
-    wall = Wall(0.024917468486642905, side=1, height=0.013643655604542835, restitution=0.65072412584395)
-    pulse = Pulse(20.378378087116324, 3.248909791511448, -1, "one-cosine", amplitude_unit="g_tan_alpha",
-                  frequency_unit="omega_p/p")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        run = simulate(body, pulse, wall=wall, friction=Friction(math.inf, lift_off="flight"),
-                       solver=Solver(rtol=3.1257968710463934e-09, max_steps=20000))
-    assert not run.status.startswith("failed"), (run.status, run.metrics["wall_impacts"])
+    edge to theta = 1.07 rad with its CM beyond the edge, so a rest there needs the ground to
+    pull the pivot down.  The wall-rest margin had no mode for that: wall impacts of 7e-14 rad/s
+    repeated until any step budget.  mu = inf holds the pivot as in rocking, until flight along
+    the wall is consistent; here it is at once: the chatter against the wall ends by the rest
+    rule, the pivot lifts off and the block tips over the wall's edge (mode 2: no ground impact)."""
+    run = _leaning_over_a_short_wall(3.248909791511448)
+    assert run.status == "overturn:mode2", (run.status, run.metrics["wall_impacts"])
+    ev = run.events
+    first_flight = ev.index[ev["event"] == "flight"][0]
+    # a Zeno sequence of wall impacts (each e_w times the last), ended by the rest rule
+    before = ev.loc[:first_flight]
+    impacts = before[before["event"] == "wall-impact"]
+    assert 1 <= len(impacts) < 100 and run.metrics["wall_impacts"] == len(impacts)
+    ratio = (-impacts["velocity_after"] / impacts["velocity_before"]).to_numpy()
+    assert ratio[:10] == pytest.approx(0.65072412584395, rel=1e-6)
+    assert (ev.loc[first_flight:, "event"] != "wall-impact").all()
+    assert run.metrics["flights"] == 1 and run.metrics["ground_impacts"] == 0
+
+
+def test_contact_14_0_jam_on_a_short_wall_ends_when_flight_is_consistent():
+    """The same scene at omega_p/p = 0.438: the block comes to rest leaning on the wall's edge
+    while the pulse still pushes it there (the held pivot pulls the ground, flight along the wall
+    is not consistent yet).  The rest lasts until the pivot's flight acceleration reaches 0, and
+    the pivot lifts off at that instant: no wall impact after the release (before the fix, 2 500
+    wall impacts of 1e-13 rad/s at one instant)."""
+    run = _leaning_over_a_short_wall(0.43798674971614954)
+    assert run.status == "overturn:mode2"
+    ev = run.events.reset_index(drop=True)
+    rest = ev.index[ev["event"] == "wall-rest"][0]
+    release = ev.index[ev["event"] == "wall-release"][0]
+    assert release > rest and ev.loc[release, "t"] - ev.loc[rest, "t"] > 0.04
+    assert ev.loc[release + 1, "event"] == "flight" and ev.loc[release + 1, "t"] == ev.loc[release, "t"]
+    assert (ev.loc[release:, "event"] != "wall-impact").all()
+    assert run.metrics["wall_impacts"] < 100

@@ -34,11 +34,6 @@ SAMPLE = {"rigid": 512, "wall": 512, "friction": 512, "flexible": 128, "flexible
 
 # failures of the baseline sample (seed 14) on commit 26893d8; see bench/README.md
 KNOWN = {
-    ("contact", "status"):
-        "contact:14:0 (a slender block, mu = inf with flight, leaning over a wall lower than it at "
-        "theta = 1.07 rad: wall impacts of 7e-14 rad/s repeat without end, the rest rule's wall-rest "
-        "margin being negative while the motion turns back into the wall) and one more batch hang since "
-        "the draw takes walls lower than the body (7efe3cc); issue #14, tests/test_contact_fuzz_cases.py",
     # wall: the former strict xfail (violated:energy:fall, 1 of 512 cases) passes since the energy check
     # measures each pair of rows against the size of E's kinetic and potential terms (bench/fuzz.py,
     # _sim_checks): in an overturning fall E is a small difference of two terms of order M g R
@@ -50,15 +45,9 @@ KNOWN = {
 _RESULTS = {}
 
 
-#: A healthy contact batch takes about 1.5 s (2 240 cases in 99 s, bench/README.md); its known
-#: hanging batches (KNOWN) are cut at this limit (the checks get twice it) to bound their cost to CI.
-TIME_LIMIT_FAMILY = {"contact": 5.0}
-
-
 def _sample(family):
     if family not in _RESULTS:
-        _RESULTS[family] = fuzz.run_family(family, SAMPLE[family], SEED, CHUNK,
-                                           TIME_LIMIT_FAMILY.get(family, TIME_LIMIT))
+        _RESULTS[family] = fuzz.run_family(family, SAMPLE[family], SEED, CHUNK, TIME_LIMIT)
     return _RESULTS[family]
 
 
