@@ -929,6 +929,13 @@ def event(k, t, y, par, disc, hdr, smp):
             if wall_base(disc[D_CS2]):
                 return closed_base_margin(t, y, par, disc, hdr, smp), 0.0, True
             g, gd = approach_gap(K_NEAR, y, par)
+            # within the contact band and not approaching beyond rounding:
+            # no root (a face stopped flat at the wall by a face impact in
+            # flight, with nothing pushing it there, kept gap 0 and fired
+            # zero-velocity face impacts at one instant for ever)
+            if (abs(g) <= FACE_RTOL * near_half_width(par)
+                    and gd >= -1e-12 * velocity_scale(y, par)):
+                return np.inf, 0.0, True
             return g, gd, True
         if mode != MODE_ROCK and mode != MODE_SLIDE_ROCK:
             return np.inf, 0.0, True

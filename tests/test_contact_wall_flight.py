@@ -103,6 +103,31 @@ def test_face_reaching_the_wall_in_flight_slides_down_it_and_lands_flat():
     assert code == L.SAFE_REST and np.all(y[1] == [0.0, 0.0, gap, 0.0, 0.0, 0.0])
 
 
+
+def test_face_stopped_at_the_wall_in_flight_with_no_push_falls_and_lands_flat():
+    """Released toward a plastic wall (e_w = 0) with no excitation: the top corner's impact throws
+    the block into flight, whose base swings into the wall; the face impact stops it flat at the
+    wall (theta = 0, v_x = 0), its base above the ground.  Nothing pushes it there, so it falls
+    freely with the face touching the wall (gap 0, not approaching) and lands flat.  The wall-side
+    base corner's event fired again at once at zero approach velocity: zero-velocity face impacts
+    at one instant until failed:transition-loop (issue #14)."""
+    body = RigidBlock.rectangle(0.3, 1.0)
+    wall = Wall(0.02, side=1, restitution=0.0)
+    run = simulate(body, None, wall=wall, friction=Friction(0.8, lift_off="flight"),
+                   theta0=0.5 * wall.limit_angle(body), dtheta0=1.0, solver=Solver(rtol=1e-10), duration=4.0)
+    assert run.status == "safe:rest", run.status
+    ev = run.events.reset_index(drop=True)
+    face = ev.index[(ev["event"] == "wall-impact") & (ev["theta"] == 0.0)]
+    assert len(face) == 1 and ev.loc[face[0], "velocity_after"] == 0.0
+    after = ev.loc[face[0] + 1:]
+    assert list(after["event"]) == ["contact", "rest"]
+    # the fall from the face impact to the flat landing is free: y_G'' = -g from its state there
+    h = run.history
+    fall = h[(h["t"] > ev.loc[face[0], "t"]) & (h["t"] < after["t"].iloc[0])]
+    assert len(fall) > 0 and (fall["theta"] == 0.0).all() and (fall["d"] == wall.gap).all()
+    assert run.metrics["residual_slide"] == wall.gap
+
+
 def _fuzz_cell(b, h, pulse_kind, wall, friction, rtol, a, f, sign):
     body = RigidBlock.rectangle(b, h)
     p = Pulse(a, f, sign, pulse_kind, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
