@@ -1611,6 +1611,13 @@ def pick_wall_corner(j, t, y, par, disc, hdr, smp, met, log, cnt,
                 met[M_N_STICK_SLIP] += 1
                 log_event(log, cnt, t, EV_SLIP, y[1], y[1], y[0], sig)
                 return RUNNING
+    # neither wedged nor a ladder: where those need the pivot to pull the
+    # ground (nearly flat against the wall, pushed into it: the wedge's
+    # forces grow like 1 / theta), the pivot lifts off with the corner on
+    # the wall; the ground-only pick would slide it into the wall, whose
+    # event fired again at once (contact:2027:494, failed:transition-loop)
+    if lift_off_at_wall(j, K_NEAR, t, y, par, disc, hdr, smp, met, log, cnt):
+        return RUNNING
     # from rest (velocities 0 now) the ground-only pick
     return pick_single_ground(j, t, y, par, disc, hdr, smp, met, log, cnt,
                               False)
@@ -2035,7 +2042,7 @@ def wall_rest_margin(t, y, par, disc, hdr, smp):
         # that flight inconsistent, is otherwise no mode at all: the body
         # rocked back into the wall and repeated zero-velocity wall impacts
         # for ever (contact:14:0, a body leaning over a short wall's edge)
-        an, _N2f = flight_wall_normal_acc(j, t, y, par, hdr, smp)
+        an, _N2f = flight_wall_normal_acc(j, 2, t, y, par, hdr, smp)
         m = min(N2, max(N, -an) if np.isfinite(an) else N)
     if not ok:
         return -1.0
@@ -2803,13 +2810,13 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
 
 
 @jit
-def flight_wall_normal_acc(j, t, y, par, hdr, smp):
+def flight_wall_normal_acc(j, kw, t, y, par, hdr, smp):
     """Normal acceleration of base corner j (> 0: off the ground) in flight
-    with the top corner's wall contact closed (frictionless), and that
-    mode's wall force (NaN if the solve fails)."""
+    with wall point kw's contact closed (frictionless), and that mode's
+    wall force (-inf and NaN if the solve fails)."""
     acc = np.empty(3)
     ok, _N0, _F0, _N1, _F1, N2, _F2 = mode_solve(
-        t, y, par, CS_OPEN, CS_OPEN, wall_state(2, 0), hdr, smp, acc)
+        t, y, par, CS_OPEN, CS_OPEN, wall_state(kw, 0), hdr, smp, acc)
     if not ok:
         return -np.inf, np.nan
     an, _at = contact_acc(j, y, par, acc)
@@ -2817,27 +2824,35 @@ def flight_wall_normal_acc(j, t, y, par, hdr, smp):
 
 
 @jit
+def lift_off_at_wall(j, kw, t, y, par, disc, hdr, smp, met, log, cnt):
+    """Base corner j on the ground and wall point kw at the wall, where no
+    contact mode with j closed is admissible: if, in flight with kw's
+    contact closed, the wall pushes and j accelerates off the ground, j
+    lifts off and the body flies along the wall (``pick_wall_flight``).
+    Returns False if that flight is not consistent."""
+    an, N2 = flight_wall_normal_acc(j, kw, t, y, par, hdr, smp)
+    if not (N2 > 0.0 and an > 0.0):
+        return False
+    enter_flight(t, y, par, disc, met, log, cnt)
+    pick_wall_flight(kw, t, y, par, disc, hdr, smp, 0)
+    if disc[D_CS2] != CS_OPEN:
+        log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], disc[D_PIVOT])
+    return True
+
+
+@jit
 def tip_off_pivot(j, t, y, par, disc, hdr, smp, met, log, cnt):
     """At rest with the top corner on the wall, where neither the sticking
     rest nor ``top_ladder`` is admissible: if pivot j would have to pull
     the ground (a body leaning over a short wall's edge with its CM beyond
-    it see-saws on the edge) and, in flight with the wall contact closed,
-    the wall pushes and the pivot accelerates off the ground, the pivot
-    lifts off and the body flies along the wall (``pick_wall_flight``).
-    Returns False if that flight is not consistent, or for a finite mu
-    (whose rest ends by the normal force itself: ``pick_single``)."""
+    it see-saws on the edge) and flight with the top corner on the wall is
+    consistent, the pivot lifts off (``lift_off_at_wall``).  The test is
+    the sign of wall_rest_margin's -a_n, so a rest that ends there finds
+    that flight consistent.  Returns False if it is not, or for a finite
+    mu (whose rest ends by the normal force itself: ``pick_single``)."""
     if np.isfinite(par[C_MU_S]):
         return False
-    an, N2 = flight_wall_normal_acc(j, t, y, par, hdr, smp)
-    # the same sign test as wall_rest_margin's -an: a rest that ends there
-    # must find this flight consistent, or it rocks back into the wall
-    if not (N2 > 0.0 and an > 0.0):
-        return False
-    enter_flight(t, y, par, disc, met, log, cnt)
-    pick_wall_flight(2, t, y, par, disc, hdr, smp, 0)
-    if disc[D_CS2] != CS_OPEN:
-        log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], disc[D_PIVOT])
-    return True
+    return lift_off_at_wall(j, 2, t, y, par, disc, hdr, smp, met, log, cnt)
 
 
 @jit

@@ -215,3 +215,31 @@ def test_contact_14_0_jam_on_a_short_wall_ends_when_flight_is_consistent():
     assert ev.loc[release + 1, "event"] == "flight" and ev.loc[release + 1, "t"] == ev.loc[release, "t"]
     assert (ev.loc[release:, "event"] != "wall-impact").all()
     assert run.metrics["wall_impacts"] < 100
+
+
+def test_contact_2027_494_nearly_flat_at_the_wall_lifts_off_instead_of_sliding_into_it():
+    """contact:2027:494 (the long run's failed:transition-loop): a block 0.9 m x 2.2 m (mu 1.94 /
+    1.88, flight) thrown at a wall 2.8 cm away by a half-sine of 13 g tan(alpha).  In flight, its
+    wall-side base corner chatters against the wall at theta = 5.2e-5 rad until the rest rule puts
+    the far corner on the ground at rest.  There the wedge needs wall and friction forces of 1e6
+    g (their lever arm is the corner's height, 5e-5 m) and both ladders a pull on the ground; the
+    ground-only pick slid the pivot into the wall, whose event fired again at once, for ever.
+    Now the pivot lifts off with the corner on the wall (flight consistent there), the face meets
+    the wall flat and the block comes to rest."""
+    body = RigidBlock.rectangle(b=0.4519683486604991, h=1.0908489339049119, e=0.6108711875195902)
+    wall = Wall(0.028100675317397315, side=-1, restitution=0.7062202857919716)
+    pulse = Pulse(13.044376390945992, 2.0257579654081015, 1, "half-sine", amplitude_unit="g_tan_alpha",
+                  frequency_unit="omega_p/p")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        run = simulate(body, pulse, wall=wall, friction=Friction(1.9426707789555029, 1.8798764640315455,
+                                                                 lift_off="flight"),
+                       solver=Solver(rtol=5.37111228603062e-09, max_steps=200_000))
+    assert run.status == "safe:rest", run.status
+    ev = run.events.reset_index(drop=True)
+    # the lift-off from the chatter's rest: flight with the corner held on the wall
+    lift = ev.index[(ev["event"] == "flight") & (ev["velocity_before"] == 0.0)
+                    & (ev["t"] > 0.2075) & (ev["t"] < 0.2076)]
+    assert len(lift) == 1 and ev.loc[lift[0] + 1, "event"] == "wall-rest"
+    # no zero-time loop anywhere: at most 40 events share an instant (the chatter's accumulation)
+    assert ev["t"].value_counts().max() < 40
