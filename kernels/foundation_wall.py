@@ -160,7 +160,18 @@ def fw_event(k, t, y, par, disc, hdr, smp):
             g, gd = fw_margin(t, y, par, disc, hdr, smp)
             return g, gd, True
         w = par[P_WALL_SIDE]
-        return par[P_THETA_W] - w * y[2], -w * y[3], True
+        g = par[P_THETA_W] - w * y[2]
+        gd = -w * y[3]
+        if abs(g) <= 1e-12 and gd >= 0.0:
+            # at the wall, not approaching and not accelerating into it: no
+            # root.  Released where the wall force only touched 0 (its
+            # margin -3e-17 and rising), the block's q'' = 7.5e-16 away
+            # drifted g to -1e-19 and zero-velocity wall impacts repeated at
+            # the release instant (foundation_wall:2026:15)
+            _ydd, qdd = fw_accelerations(t, y, par, disc, hdr, smp)
+            if -w * qdd >= 0.0:
+                return np.inf, 0.0, True
+        return g, gd, True
     if k == TS_REST:
         return ts_event(k, t, y, par, disc, hdr, smp)
     return ts_shared_event(fw_accelerations, TS_IQ, k, t, y, par, disc, hdr, smp)
