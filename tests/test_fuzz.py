@@ -30,7 +30,8 @@ SEED = 14
 CHUNK = 32
 TIME_LIMIT = 60.0
 SAMPLE = {"rigid": 512, "wall": 512, "friction": 512, "flexible": 128, "flexible_friction": 256,
-          "foundation": 128, "flexible_wall": 64, "contact": 256}
+          "foundation": 128, "flexible_wall": 64, "contact": 256,
+          "foundation_wall": 128, "foundation_friction": 64, "flexible_foundation": 64}
 
 # failures of the baseline sample (seed 14) on commit 26893d8; see bench/README.md
 KNOWN = {
