@@ -61,10 +61,10 @@ cell gets ``violated:<invariant>``.
   README: "bit for bit"; foundation_wall: out of the top corner's reach on both foundations,
   against the two-spring or switching model without a wall, tests/test_foundation_wall.py "out
   of reach is the no-wall run").  flexible_wall: gap >= 2H (H = body.H) against the flexible
-  kernel, the same *status* and max rotation to REL_EXACT (README: "step for step").  contact: gap >= 2h
-  against the same friction scene without a wall (rigid_friction, or the contact model in flight
-  mode), outcome only; skipped (not comparable): cells where the tall-wall run hit the wall (a
-  block that slides or flies can travel to a wall at gap >= 2h), and cells whose reference
+  kernel, the same *status* and max rotation to REL_EXACT (README: "step for step").  contact:
+  gap >= 2h against the same friction scene without a wall (rigid_friction, or the contact model
+  in flight mode), outcome only; skipped (not comparable): cells where the tall-wall run hit
+  the wall (a block that slides or flies can travel to a wall at gap >= 2h), and cells whose reference
   stopped at lift-off (lift_off "stop", outcome "flight": with a wall the contact model always
   flies, README "The contact model").
 * ``early_exit``: the spectrum run (``early_exit=True``) against ``simulate`` of the same cell

@@ -6,7 +6,8 @@ bound ("status"), and every invariant checked on it must hold ("invariants"; the
 the docstring of bench/fuzz.py).  Where the baseline sample has failures, the check is marked
 ``xfail(strict=True)`` with the failure kind and count, so it turns into a hard failure the day
 the kernels are fixed (then remove the mark).  About 45 s after compilation (one thread), plus
-about 30 s for flexible_wall and contact.
+about 30 s for flexible_wall and contact, and about 35 s for the newer foundation models
+(foundation_wall, foundation_friction, flexible_foundation).
 """
 from __future__ import annotations
 
@@ -31,7 +32,7 @@ CHUNK = 32
 TIME_LIMIT = 60.0
 SAMPLE = {"rigid": 512, "wall": 512, "friction": 512, "flexible": 128, "flexible_friction": 256,
           "foundation": 128, "flexible_wall": 64, "contact": 256,
-          "foundation_wall": 128, "foundation_friction": 64, "flexible_foundation": 64}
+          "foundation_wall": 256, "foundation_friction": 64, "flexible_foundation": 128}
 
 # failures of the baseline sample (seed 14) on commit 26893d8; see bench/README.md
 KNOWN = {
