@@ -35,8 +35,8 @@ cell gets ``violated:<invariant>``.
 
 * ``mirror``: a two-sided body (every family but the wall ones) under sign -1 gives the same
   result as under sign +1 (the one-sine, half-sine and one-cosine pulses of sign -1 are exact
-  mirror images), run with ``early_exit=False``.  Wall, flexible_wall and contact families: (wall
-  side s, sign +1) against (side -s, sign -1).
+  mirror images), run with ``early_exit=False``.  Wall, flexible_wall, contact and foundation_wall
+  families: (wall side s, sign +1) against (side -s, sign -1).
 * ``scale``: the same scene with every length scaled by k (p by 1/sqrt(k); wall gap, height and
   slide tolerance scaled; t_after, fixed dt and the chatter thresholds scaled in time), the same
   a_p/(g tan alpha) and omega_p/p.  Not exact in floating point (atol is absolute in rad/s):
@@ -51,13 +51,23 @@ cell gets ``violated:<invariant>``.
   at the tight rtol is counted under ``reported`` as ``mu_inf_tension`` (not a failure) when
   ``mu_inf_tension`` shows, apart from the friction kernel, the frictionless pivot leaving the
   cone and Friction(1e6) parting there; any other difference is ``violated:mu_inf`` (with a
-  given e: ``violated:mu_inf:given-e``).
+  given e: ``violated:mu_inf:given-e``).  foundation_friction: Friction(1e6) against the
+  two-spring model (tests/test_foundation_friction.py: "never slips and reproduces the two-spring
+  model"); with no corner on its spring the two-spring model holds the base centre horizontally
+  fixed, a horizontal force without a normal one, while the sliding block flies free: a pair
+  that still differs at the tight rtol is counted under ``reported`` as ``mu_inf_flight`` when
+  ``mu_inf_flight`` shows both runs taking off at the same time, else ``violated:mu_inf``.  A
+  Friction(1e6) run that fails (at the drawn rtol the slip just before take-off, with a friction
+  force 1e6 N, is too stiff for the step budget: seed 14, bench/README.md) counts as
+  ``violated:mu_inf`` by the rule of every check run.
 * ``tall_wall``: a wall at gap >= 2h (either side, any height) against no wall (wall family;
-  README: "bit for bit").  flexible_wall: gap >= 2H (H = body.H) against the flexible kernel, the
-  same *status* and max rotation to REL_EXACT (README: "step for step").  contact: gap >= 2h
-  against the same friction scene without a wall (rigid_friction, or the contact model in flight
-  mode), outcome only; skipped (not comparable): cells where the tall-wall run hit the wall (a
-  block that slides or flies can travel to a wall at gap >= 2h), and cells whose reference
+  README: "bit for bit"; foundation_wall: out of the top corner's reach on both foundations,
+  against the two-spring or switching model without a wall, tests/test_foundation_wall.py "out
+  of reach is the no-wall run").  flexible_wall: gap >= 2H (H = body.H) against the flexible
+  kernel, the same *status* and max rotation to REL_EXACT (README: "step for step").  contact:
+  gap >= 2h against the same friction scene without a wall (rigid_friction, or the contact model
+  in flight mode), outcome only; skipped (not comparable): cells where the tall-wall run hit
+  the wall (a block that slides or flies can travel to a wall at gap >= 2h), and cells whose reference
   stopped at lift-off (lift_off "stop", outcome "flight": with a wall the contact model always
   flies, README "The contact model").
 * ``early_exit``: the spectrum run (``early_exit=True``) against ``simulate`` of the same cell
@@ -74,8 +84,14 @@ cell gets ``violated:<invariant>``.
   contact).  Contact: the history's d, z are the base midpoint P, the CM is P + h (sin theta,
   cos theta): E = (v_Gx^2 + v_Gy^2)/2 + I_G theta'^2/(2M) + g (y_G - h).  The pivot-switch (I1)
   impact map is checked too since 52be7fd (where it would create energy the impact takes the
-  full-contact map).  Not checked: the foundation family (spring energy of the
-  two-spring model not in the history; the switching model gains energy at uplift by design).
+  full-contact map).  Two-spring foundation (foundation_wall's two-spring scenes,
+  foundation_friction, flexible_foundation: ``two_spring_energy``): T + gravity + k_v
+  max(delta, 0)^2/2 of each corner spring, per kg of the carried mass, the kernel's own E
+  (kernels/foundation.py: dE/dt <= 0 in free motion, a released corner included; wall impacts
+  keep or lose kinetic energy), measured per pair of rows against |T| + |V| as for the sliding
+  blocks.  Not checked: the foundation family (its draw and counts predate
+  ``two_spring_energy``; its two-spring scenes could use it), and the switching foundation, with or
+  without a wall (the switching model gains energy at uplift by design).
 * ``stiff``: (flexible family, reported only) omega_n/p = 1000 against ``rigid_equivalent()``:
   outcome mismatches are counted under ``stiff_mismatch``, never a failure.
 
@@ -87,7 +103,24 @@ at least 10 steps per period of the fastest mode), flexible_wall (a
 FlexibleBody drawn as in flexible with a Wall drawn as in wall, gap > 0 only: gap 0 is refused
 for flexible bodies) and contact (RigidBlock.rectangle, a wall with gap > 0 and height None or
 >= 2h, Friction(mu) with lift_off "stop" or "flight", mu 0.05-2, or mu = inf with "flight" in
-15 % of batches: the contact model).
+15 % of batches: the contact model).  The newer foundation models, each family a block or body
+drawn as above on a foundation drawn as in foundation (mass clipped likewise; a FlexibleBody
+carries the drawn mass as its own):
+
+* foundation_wall: RigidBlock.rectangle on TwoSpringFoundation (model two_spring_wall) or
+  SwitchingFoundation (switching_wall), half each, with a wall drawn as in wall, gap > 0 only;
+  two-spring: height None or >= 2h only (lower walls are refused there), switching: lower walls
+  too, the gap doubled (no further random draw) until the wall lies beyond the contact phase's
+  uplift rotation theta_y (``_switching_wall_gap``; the front end refuses a nearer wall).
+  Checks: mirror (the wall moved to the other side), scale, tall_wall, early_exit, energy on
+  the two-spring scenes only.
+* foundation_friction: RigidBlock.rectangle on TwoSpringFoundation with Friction(mu) as in
+  friction, lift_off "stop" or "flight" (the kernel flies when no corner touches either way):
+  model two_spring_friction.  Checks: mirror, scale, mu_inf, early_exit, energy.
+* flexible_foundation: a FlexibleBody drawn as in flexible (base_mass_ratio None: the front
+  end's 0.1 on a foundation) on TwoSpringFoundation: model flexible_two_spring; a fixed step
+  takes the body's frequencies on the springs (``flexible_frequencies``).  Checks: mirror,
+  scale, early_exit, energy (column, base and springs).
 
 Usage::
 
@@ -116,8 +149,8 @@ import numpy as np
 import pandas as pd
 
 FAMILIES = ("rigid", "wall", "friction", "flexible", "flexible_friction", "foundation", "flexible_wall",
-            "contact")
-WALL_FAMILIES = ("wall", "flexible_wall", "contact")
+            "contact", "foundation_wall", "foundation_friction", "flexible_foundation")
+WALL_FAMILIES = ("wall", "flexible_wall", "contact", "foundation_wall")
 # the draw takes a fixed dt per period of the fastest frequency it knows (omega_p, omega_n), but
 # scenes have stiffer modes it does not see: a flexible body's light base sliding on a held
 # lift-off (sqrt((1 + mb)/mb) omega_n) or turning about its pivot where the mass passes near the
@@ -247,11 +280,29 @@ def draw_batch(family, seed, batch, chunk=32):
     elif family == "foundation":
         P["body"] = _rigid_body(rng, rect_only=True)
         P["body"]["e"] = None
-        kind = rng.choice(["two-spring", "switching", "linear"], p=[0.4, 0.3, 0.3])
-        P["mass"] = _logu(rng, 1.0, 1e4)
-        P["foundation"] = {"type": str(kind), "omega_over_p": _logu(rng, 3.0, 300.0),
-                           "zeta": float(rng.uniform(0.0, 0.2)),
-                           "e_f": 1.0 if rng.uniform() < 0.5 else float(rng.uniform(0.5, 1.0))}
+        _foundation_draw(rng, P, ["two-spring", "switching", "linear"], [0.4, 0.3, 0.3])
+    elif family == "foundation_wall":
+        P["body"] = _rigid_body(rng, rect_only=True)
+        P["body"]["e"] = None
+        _foundation_draw(rng, P, ["two-spring", "switching"], [0.5, 0.5])
+        # two-spring: gap > 0 and walls at least as tall as the body only (the front end refuses
+        # the rest, fastrock.model.foundation.wall_limit_angle); switching: lower walls too (its
+        # rocking phase is the rigid wall model's), gap > 0; the gap is raised past the contact
+        # phase's reach after the mass is clipped (_switching_wall_gap)
+        P["wall"] = _wall_draw(rng, P["body"]["h"], gap_zero=False,
+                               low=P["foundation"]["type"] == "switching")
+    elif family == "foundation_friction":
+        P["body"] = _rigid_body(rng, rect_only=True)
+        P["body"]["e"] = None
+        _foundation_draw(rng, P, ["two-spring"], [1.0])
+        P["friction"] = _friction(rng)
+        # the two_spring_friction kernel slides and flies whatever lift_off says: both are drawn
+        P["friction"]["lift_off"] = "stop" if rng.uniform() < 0.5 else "flight"
+    elif family == "flexible_foundation":
+        P["body"] = _flex_body(rng)
+        # on springs the base moves: base_mass_ratio None is the front end's default 0.1, and the
+        # impact law is not used (soft contact); a pivot-switch draw keeps its e, which is unused
+        _foundation_draw(rng, P, ["two-spring"], [1.0])
     else:
         raise ValueError(f"unknown family {family!r}")
     P["pulse"] = str(rng.choice(PULSES))
@@ -270,9 +321,43 @@ def draw_batch(family, seed, batch, chunk=32):
     P["scale_k"] = _logu(rng, 0.03, 30.0)
     P["tall_side"] = int(rng.choice([-1, 1]))
     P["tall_gap"] = float(rng.uniform(1.0, 3.0))
-    if family == "foundation":
+    if P["foundation"] is not None:
         _clip_foundation_mass(P)
+    if family == "foundation_wall" and P["foundation"]["type"] == "switching":
+        _switching_wall_gap(P)
     return P
+
+
+def _foundation_draw(rng, P, kinds, p):
+    """The foundation family's draw of a foundation (kind, mass, omega/p, zeta, e_f) into P."""
+    kind = rng.choice(kinds, p=p)
+    P["mass"] = _logu(rng, 1.0, 1e4)
+    P["foundation"] = {"type": str(kind), "omega_over_p": _logu(rng, 3.0, 300.0),
+                       "zeta": float(rng.uniform(0.0, 0.2)),
+                       "e_f": 1.0 if rng.uniform() < 0.5 else float(rng.uniform(0.5, 1.0))}
+
+
+SWITCHING_WALL_MARGIN = 1.05
+
+
+def _switching_wall_gap(P):
+    """A switching foundation beside a wall needs the wall beyond its contact phase's reach:
+    theta_w > theta_y = M g b / k_t (else the front end refuses the scene,
+    ``switching_wall_par``).  theta_y/alpha is about (p/omega)^2, so a gap drawn down to 1e-9 m
+    usually puts the wall inside it: the gap is doubled (no random draw) until theta_w >=
+    SWITCHING_WALL_MARGIN theta_y.  Both angles are dimensionless, so the scale check's gap k
+    times as large keeps the order."""
+    from fastrock.kernels.layout import P_THETA_Y
+    from fastrock.model.foundation import foundation_par
+    fr = _fr()
+    kw = build_scene(dict(P, wall=None), 1.0)
+    theta_y = float(foundation_par(kw["body"], kw["foundation"], P["mass"])[P_THETA_Y])
+    W = P["wall"]
+    for _ in range(200):
+        tw = fr.Wall(W["gap"], W["side"], W["height"], W["restitution"]).limit_angle(kw["body"])
+        if tw >= SWITCHING_WALL_MARGIN * theta_y:
+            break
+        W["gap"] *= 2.0
 
 
 def _clip_foundation_mass(P):
@@ -330,6 +415,9 @@ def build_scene(P, scale=1.0, variant=None):
         body = body.rigid_equivalent()
     if variant == "no_friction" and P["family"] == "flexible_friction":
         body = dataclasses.replace(body, base_mass_ratio=body.base_mass(sliding=True))
+    if P["foundation"] is not None and P["body"]["kind"] == "flexible":
+        # a FlexibleBody carries its own (column) mass onto the foundation: the drawn one
+        body = dataclasses.replace(body, mass=P["mass"])
     kw = {"body": body, "pulse": P["pulse"], "mass": P["mass"]}
     if P["wall"] is not None and variant != "no_wall":
         W = P["wall"]
@@ -364,7 +452,10 @@ def build_scene(P, scale=1.0, variant=None):
         fd = kw.get("foundation")
         if fd is not None:      # contact vibration, and the vertical mode of the corner springs
             w = max(w, P["foundation"]["omega_over_p"] * body.p)
-            if hasattr(fd, "k_v"):
+            if hasattr(fd, "k_v") and P["body"]["kind"] == "flexible":
+                # the vertical mode and the two coupled ones of column and rocking on the springs
+                w = max([w] + [x for x in fd.flexible_frequencies(body) if math.isfinite(x)])
+            elif hasattr(fd, "k_v"):
                 I0 = P["mass"] * body.g * math.hypot(body.b, body.h) / body.p ** 2
                 w = max(w, math.sqrt(2 * fd.k_v / P["mass"]), math.sqrt(4 * fd.k_v * body.b ** 2 / I0))
         steps_per_period = P["dt_per"]
@@ -698,6 +789,48 @@ def mu_inf_tension(P, key, limit=None):
                        f"{part['event'].iloc[0]} at t = {tp:.9g} s")
 
 
+def mu_inf_flight(P, key, limit=None):
+    """Why ``Friction(1e6)`` and the frictionless block on the two-spring foundation
+    (foundation_friction family) may differ on cell ``key``: with no corner on its spring the
+    frictionless model holds the base centre horizontally fixed (kernels/foundation.py, MODE_FLIGHT),
+    a horizontal force with no normal force under it, which no finite mu gives; the sliding model
+    flies free (kernels/foundation_friction.py).  Checked at the tight rtol: the frictionless run
+    has a flight, and the Friction(1e6) run flies at the same time (both integrate the same
+    equations until then).  Returns ("flight", detail) then, else None."""
+    from fastrock import Friction, Pulse, simulate
+    kw = build_scene(dict(P, friction=None), 1.0, "tight")
+    body = kw.pop("body")
+    a, f, s = key
+    pulse = Pulse(a, f, s, kw.pop("pulse"), amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+    short = {k: v for k, v in kw.items() if k != "t_after"}
+
+    def first_flight(r):
+        f = r.events[r.events["event"] == "flight"]
+        return float(f["t"].iloc[0]) if len(f) else None
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with _Alarm(limit):
+                # cost: only as far as the first flight (the pulse first, most take off in it)
+                r0 = simulate(body, pulse, duration=pulse.end_time(body), **short)
+                if first_flight(r0) is None and not r0.status.startswith("failed"):
+                    r0 = simulate(body, pulse, **kw)
+                t0 = first_flight(r0)
+                if t0 is None or r0.status.startswith("failed"):
+                    return None
+                r1 = simulate(body, pulse, friction=Friction(MU_INF, slide_tolerance=1e-6),
+                              duration=t0 * (1 + 1e-5) + 1e-9, **short)
+    except _Hang:
+        return None
+    t1 = first_flight(r1)
+    if r1.status.startswith("failed") or t1 is None:
+        return None
+    if abs(t0 - t1) > 1e-6 * max(1.0, abs(t0)):
+        return None
+    return "flight", (f"the frictionless block flies at t = {t0:.9g} s with its base centre held "
+                      f"horizontally; Friction({MU_INF:g}) flies free there (t = {t1:.9g} s)")
+
+
 _DT_NAMED = re.compile(r"dt <= ([0-9.eE+-]+) s would be stable")
 _STEPS_NAMED = re.compile(r"needs ([0-9.eE+-]+) fixed steps for .* more than the step budget max_steps")
 
@@ -777,6 +910,11 @@ def energy(history, body, scene, family):
     if family in ("friction", "contact"):
         kin, pot = rigid_sliding_energy(history, body, scene, family)
         return kin + pot
+    if family in FOUNDATION_ENERGY:
+        if scene["foundation"].model != "two-spring":
+            return None         # the switching model gains energy at uplift by design
+        kin, pot = two_spring_energy(history, body, scene)
+        return kin + pot
     if family in ("flexible", "flexible_friction", "flexible_wall"):
         u = history["u"].to_numpy()
         du = history["u_dot"].to_numpy()
@@ -796,6 +934,49 @@ def energy(history, body, scene, family):
         pot = 0.5 * body.omega_n ** 2 * u * u + g * (Y - H) + mb * g * (Yb - hb)
         return kin + pot
     return None
+
+
+#: families whose two-spring scenes have their energy checked (``two_spring_energy``)
+FOUNDATION_ENERGY = ("foundation_wall", "foundation_friction", "flexible_foundation")
+
+
+def two_spring_energy(history, body, scene):
+    """(T, V) per history row [J/kg of the carried mass M] of a body on the two-spring foundation
+    (models two_spring_wall, two_spring_friction, flexible_two_spring): y is the base point below
+    the centre of mass (0: springs unloaded), the corner springs push only while compressed,
+    ``k_v max(x sin(theta) - y, 0)^2 / 2`` at x = +-b; T of the centre of mass (with the slide
+    d' if any) and the rotary inertia; a flexible body: column mass m at (u, H) in the body frame
+    plus the base m_b at h_b, strain m w_n^2 u^2/2 (tests/test_foundation_wall.py,
+    test_foundation_friction.py, test_foundation_flexible.py: their energies, there in J).  V is
+    measured from the upright body with unloaded springs."""
+    from fastrock.model.foundation import block_inertia, flexible_inertia
+    fnd = scene["foundation"]
+    flexible = _is_flexible(body)
+    blk = flexible_inertia(body) if flexible else block_inertia(body, scene["mass"])
+    y, yd, q, qd = (history[c].to_numpy() for c in ("y", "y_dot", "theta", "theta_dot"))
+    dd = history["d_dot"].to_numpy() if "d_dot" in history else np.zeros_like(q)
+    c, sn = np.cos(q), np.sin(q)
+    g = blk.g
+    if flexible:
+        u, ud = history["u"].to_numpy(), history["u_dot"].to_numpy()
+        m, mb, H, hb = blk.m, blk.m_b, blk.H, blk.h_b
+        vx = ud * c - u * sn * qd + H * c * qd
+        vy = yd - ud * sn - u * c * qd - H * sn * qd
+        bx, by = hb * c * qd, yd - hb * sn * qd
+        T = 0.5 * (m * (vx ** 2 + vy ** 2) + mb * (bx ** 2 + by ** 2) + (blk.I_m + blk.I_b) * qd ** 2)
+        V = g * (m * (y - u * sn + H * c - H) + mb * (y + hb * c - hb)) + 0.5 * m * blk.wn ** 2 * u ** 2
+    else:
+        vx = dd + blk.h * c * qd
+        vy = yd - blk.h * sn * qd
+        T = 0.5 * blk.M * (vx ** 2 + vy ** 2) + 0.5 * blk.I_G * qd ** 2
+        V = blk.M * g * (y + blk.h * c - blk.h)
+    for x in (blk.b, -blk.b):
+        V = V + 0.5 * fnd.k_v * np.maximum(x * sn - y, 0.0) ** 2
+    return T / blk.M, V / blk.M
+
+
+def _is_flexible(body):
+    return getattr(body, "kind", "") == "flexible"
 
 
 def rigid_sliding_energy(history, body, scene, family):
@@ -832,6 +1013,11 @@ def energy_terms(history, body, family, scene=None):
     ``_sim_checks``)."""
     if family in ("friction", "contact"):
         kin, pot = rigid_sliding_energy(history, body, scene, family)
+        return np.abs(kin) + np.abs(pot)
+    if family in FOUNDATION_ENERGY:
+        if scene["foundation"].model != "two-spring":
+            return None
+        kin, pot = two_spring_energy(history, body, scene)
         return np.abs(kin) + np.abs(pot)
     if family not in ("rigid", "wall"):
         return None
@@ -969,8 +1155,12 @@ def _checks(res, P, main, limit):
         _pair_check(res, "mu_inf", P, cells, spec_rows("mu_inf"), spec_rows("no_friction"),
                     variants=("mu_inf", "no_friction"), outcome_only=True, skip=not_comparable if fam == "flexible_friction" else None,
                     limit=limit, explain=(lambda k: mu_inf_tension(P, k, limit)) if fam == "friction" else None)
-    if fam == "wall":
+    if fam in ("wall", "foundation_wall"):
         _pair_check(res, "tall_wall", P, cells, spec_rows("tall_wall"), spec_rows("no_wall"), limit=limit)
+    if fam == "foundation_friction":     # tests/test_foundation_friction.py: mu = 1e6 never slips
+        _pair_check(res, "mu_inf", P, cells, spec_rows("mu_inf"), spec_rows("no_friction"),
+                    variants=("mu_inf", "no_friction"), outcome_only=True, limit=limit,
+                    explain=lambda k: mu_inf_flight(P, k, limit))
     if fam == "flexible_wall":     # README: the flexible kernel step for step
         _pair_check(res, "tall_wall", P, cells, spec_rows("tall_wall"), spec_rows("no_wall"), limit=limit,
                     status=True)

@@ -6,8 +6,9 @@ base's rotation, docs: theory/foundation_flexible, "Stiff scenes").
 
     python bench/fuzz_flexible_foundation.py SEED N [--wide] [--replay]
 
-Not part of bench/fuzz.py's families yet (no scale, mirror or limit checks here: those are
-tests/test_foundation_flexible.py's).  Measured (2 cores, load ~3): seed 7, 1500 scenes,
+bench/fuzz.py's family flexible_foundation draws this model too, with its status, mirror, scale,
+early-exit and energy checks; this script keeps its own draw (lighter bases, ``--wide``) and no
+checks beyond the status (the limits are tests/test_foundation_flexible.py's).  Measured (2 cores, load ~3): seed 7, 1500 scenes,
 125-167 s, 11 failed:step-budget (base frequencies 6.0e3 ... 9.5e4 rad/s); seed 11 --wide, 600
 scenes, 258 s, 30 failed:step-budget; none failed otherwise.
 """

@@ -6,7 +6,8 @@ bound ("status"), and every invariant checked on it must hold ("invariants"; the
 the docstring of bench/fuzz.py).  Where the baseline sample has failures, the check is marked
 ``xfail(strict=True)`` with the failure kind and count, so it turns into a hard failure the day
 the kernels are fixed (then remove the mark).  About 45 s after compilation (one thread), plus
-about 30 s for flexible_wall and contact.
+about 30 s for flexible_wall and contact, and about 35 s for the newer foundation models
+(foundation_wall, foundation_friction, flexible_foundation).
 """
 from __future__ import annotations
 
@@ -30,7 +31,8 @@ SEED = 14
 CHUNK = 32
 TIME_LIMIT = 60.0
 SAMPLE = {"rigid": 512, "wall": 512, "friction": 512, "flexible": 128, "flexible_friction": 256,
-          "foundation": 128, "flexible_wall": 64, "contact": 256}
+          "foundation": 128, "flexible_wall": 64, "contact": 256,
+          "foundation_wall": 256, "foundation_friction": 64, "flexible_foundation": 128}
 
 # failures of the baseline sample (seed 14) on commit 26893d8; see bench/README.md
 KNOWN = {
@@ -165,3 +167,73 @@ def test_unstable_step_reported_only_where_the_named_step_is_stable():
     assert why is not None and "dt <= 0.000153 s" in why and "ends overturn" in why, why
     P = fuzz.draw_batch("flexible_friction", 2026, 17)
     assert fuzz.unstable_step_named(P, (17.284316, 0.706193, 1)) is None
+
+
+def test_foundation_draws_build_their_models():
+    """Every drawn scene of the new foundation families is one the front end accepts, at scale 1
+    and at the scale check's k, and selects the model the family names: a switching foundation's
+    wall lies beyond its uplift rotation (``_switching_wall_gap``), a two-spring one is at least as
+    tall as the block, a FlexibleBody carries the drawn mass."""
+    from fastrock.running.registry import select
+    want = {("foundation_wall", "two-spring"): "two_spring_wall", ("foundation_wall", "switching"): "switching_wall",
+            ("foundation_friction", "two-spring"): "two_spring_friction",
+            ("flexible_foundation", "two-spring"): "flexible_two_spring"}
+    seen = set()
+    for fam in ("foundation_wall", "foundation_friction", "flexible_foundation"):
+        for b in range(40):
+            P = fuzz.draw_batch(fam, SEED, b)
+            for k in (1.0, P["scale_k"]):
+                kw = fuzz.build_scene(P, k)
+                spec = select(kw["body"], wall=kw.get("wall"), friction=kw.get("friction"),
+                              foundation=kw["foundation"], mass=kw["mass"])
+                assert spec.name == want[fam, P["foundation"]["type"]], (P["id"], spec.name)
+            seen.add(spec.name)
+    assert seen == set(want.values())
+
+
+def test_mu_inf_flight_explains_only_a_shared_take_off():
+    """foundation_friction: Friction(1e6) and the frictionless two-spring block part only where the
+    latter flies (its base centre held horizontally, a force without a normal one).  The
+    explanation holds where both runs take off at the same instant (foundation_friction:14:0, a
+    one-sine pulse of 3.67 g tan alpha), and nowhere without a flight (foundation_friction:14:3,
+    a_p = 0.999 g tan alpha, where neither run takes off)."""
+    P = fuzz.draw_batch("foundation_friction", SEED, 0)
+    why = fuzz.mu_inf_flight(P, (P["amps"][0], P["freqs"][0], 1))
+    assert why is not None and why[0] == "flight" and "flies at t = 0.24993" in why[1], why
+    P = fuzz.draw_batch("foundation_friction", SEED, 3)
+    assert fuzz.mu_inf_flight(P, (P["amps"][0], P["freqs"][0], 1)) is None
+
+
+@pytest.mark.parametrize("family", ["foundation_wall", "foundation_friction", "flexible_foundation"])
+def test_two_spring_energy_is_kept_without_dashpots(family):
+    """The energy of the two-spring families (``two_spring_energy``) on free motion: undamped
+    springs (and column), an elastic wall (released away from it, e_w = 1).  E stays constant to
+    1e-9 of g R while the block rocks and flies off its springs; with friction (mu = 2) the base
+    slips at the landings and E only falls."""
+    import numpy as np
+    from fastrock.model.foundation import TwoSpringFoundation
+    if family == "flexible_foundation":
+        body = fr.FlexibleBody(alpha=0.25, p=2.0, omega_n_over_p=8.0, zeta=0.0, mass=3.0)
+    else:
+        body = fr.RigidBlock.rectangle(0.3, 0.6)
+    fnd = TwoSpringFoundation.from_vibration(body, 40.0 * body.p, 0.0, 3.0)
+    scene = {"foundation": fnd, "mass": 3.0}
+    extra = {"wall": fr.Wall(0.02, side=1, restitution=1.0)} if family == "foundation_wall" else {}
+    if family == "foundation_friction":
+        extra["friction"] = fr.Friction(2.0)
+    run = fr.simulate(body, None, foundation=fnd, mass=3.0, theta0=-0.6 * body.alpha, duration=2.0, rtol=1e-11,
+                      **extra)
+    assert not run.status.startswith("failed"), run.status
+    T, V = fuzz.two_spring_energy(run.history, body, scene)
+    E = T + V
+    gR = body.g ** 2 / body.p ** 2
+    assert np.ptp(T) > 0.01 * gR                          # it moves
+    assert run.metrics["impacts"] >= 5                     # lands on its springs again and again
+    if family == "foundation_wall":
+        assert run.metrics["wall_impacts"] >= 1
+    if family == "foundation_friction":
+        assert (run.events["event"] == "slip").any()
+        assert np.max(np.diff(E)) < 1e-9 * gR
+        assert E[-1] < E[0] - 1e-7 * gR                    # the slips dissipate
+    else:
+        assert np.max(np.abs(E - E[0])) < 1e-9 * gR
