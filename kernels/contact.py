@@ -2042,8 +2042,14 @@ def wall_rest_margin(t, y, par, disc, hdr, smp):
         # that flight inconsistent, is otherwise no mode at all: the body
         # rocked back into the wall and repeated zero-velocity wall impacts
         # for ever (contact:14:0, a body leaning over a short wall's edge)
-        an, _N2f = flight_wall_normal_acc(j, 2, t, y, par, hdr, smp)
-        m = min(N2, max(N, -an) if np.isfinite(an) else N)
+        m = min(N2, N)
+        if N < 0.0:
+            # only then can -a_n decide (for N >= 0 the margin has the sign
+            # of min(N2, N) either way): no second mode solve per margin
+            # evaluation while the pivot pushes
+            an, _N2f = flight_wall_normal_acc(j, 2, t, y, par, hdr, smp)
+            if np.isfinite(an):
+                m = min(N2, max(N, -an))
     if not ok:
         return -1.0
     return m
