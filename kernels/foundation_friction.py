@@ -46,9 +46,11 @@ MODE_SLIDE / MODE_SLIDE_ROCK (slip), MODE_FLIGHT.  With
 motion loses energy to the dashpots and to friction (H d' <= 0 in slip, 0
 in stick and flight), so E never grows.  The two-spring model's early
 decisions (no further lift-off, no overturning) say nothing about a later
-slip, so this model makes none: only the rest rule (``ts_at_rest``, in
-stick on both corners after the excitation) ends a run early, where the
-block is at rest and d final.
+slip, so they decide a run here only in stick on both corners after the
+excitation where the stick also holds for good (``ff_sticks_for_good``, an
+energy bound on |H_s| / N): no further lift-off (``ts_stays_in_contact``,
+with ``early_exit``) and the rest rule (``ts_at_rest``).  Then d and the
+slip metrics are final.  A run that rocks, slides or flies is integrated.
 
 Parameters: the two-spring vector (``kernels/layout.py``, N_PAR_FOUNDATION
 entries) followed by P_MU_S, P_MU_K.  Status codes as the two-spring model.
@@ -62,8 +64,10 @@ from .excitation import ground
 from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT, TS_IQ,
                          TS_LEFT, TS_N_EVENTS, TS_REST, TS_RIGHT,
                          corner_force, never_static, ts_accelerations,
-                         ts_at_rest, ts_event, ts_init_corners, ts_set_mode,
-                         ts_set_rest, ts_shared_event, ts_shared_transition)
+                         ts_at_rest, ts_energy_above_rest, ts_event,
+                         ts_init_corners, ts_never_lifts, ts_set_mode,
+                         ts_set_rest, ts_shared_event, ts_shared_transition,
+                         ts_stays_in_contact)
 from .friction import track_slide
 from .hybrid import (book_time, final_status, integrate_hybrid, log_event,
                      sweep_rows)
@@ -73,7 +77,7 @@ from .layout import (D_MODE, D_STATIC, EV_SLIP, EV_STICK, MODE_FLIGHT,
                      O_EARLY_EXIT, O_T0, RUNNING, S_ON)
 from .rigid import P_G, track_rotation
 
-from .layout import P_B, P_B_SKEW, P_H, P_I_G, P_MASS  # noqa: E402
+from .layout import P_B, P_B_SKEW, P_CV, P_H, P_I_G, P_KV, P_MASS  # noqa: E402
 
 P_MU_S = N_PAR_FOUNDATION
 P_MU_K = N_PAR_FOUNDATION + 1
@@ -293,8 +297,45 @@ def ff_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
 
 
 @jit
+def ff_sticks_for_good(y, par):
+    """Stick on both corners after the excitation (a_g = a_v = 0, symmetric
+    block, level ground) holds for good: |H_s| < mu_s N at every state the
+    energy dE above the static equilibrium still reaches (ts_never_lifts
+    holds, so both corners stay in contact and the motion is the two-spring
+    model's).  ts_never_lifts' Cauchy-Schwarz bound gives each corner force
+    within F = sqrt(dE (k + k^2/kappa + 2 c^2 (1/M + R^2/I_G))) of M g / 2,
+    so N >= M g - 2 F, N <= M g + 2 F and |f_R - f_L| <= 2 F; with
+    S = sqrt(dE / kappa) / b >= |sin q| and W = 2 dE / I_G >= q'^2, the
+    moment row with H = H_s, (I_G + M h^2 cos^2 q) q'' = h sin q N
+    + M h^2 sin q cos q q'^2 - b cos q (f_R - f_L), bounds |q''| by
+    Q = (h S N_max + M h^2 S W + 2 b F) / I_G, and |H_s| = M h |cos q q''
+    - sin q q'^2| <= M h (Q + S W)."""
+    dE, kappa = ts_energy_above_rest(y, par)
+    if not ts_never_lifts(dE, kappa, par):
+        return False
+    M = par[P_MASS]
+    g = par[P_G]
+    h = par[P_H]
+    b = par[P_B]
+    k = par[P_KV]
+    c = par[P_CV]
+    iG = par[P_I_G]
+    dE = max(dE, 0.0)
+    m_inv = 1.0 / M + (b * b + h * h) / iG
+    F = math.sqrt(dE * (k + k * k / kappa + 2.0 * c * c * m_inv))
+    S = math.sqrt(dE / kappa) / b
+    W = 2.0 * dE / iG
+    Q = (h * S * (M * g + 2.0 * F) + M * h * h * S * W + 2.0 * b * F) / iG
+    return par[P_MU_S] * (M * g - 2.0 * F) > M * h * (Q + S * W)
+
+
+@jit
 def ff_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
-    """As ts_after_step without its early decisions (module docstring)."""
+    """ts_after_step's decisions in full contact, where the stick also
+    holds for good (ff_sticks_for_good): then the rest of the motion is the
+    two-spring model's, and d and the slip metrics are final.  In the
+    other modes no decision: a later slip is not bounded (module
+    docstring)."""
     disc[D_HOLD_RIGHT] = 0
     disc[D_HOLD_LEFT] = 0
     track_rotation(y[2], met)
@@ -304,8 +345,13 @@ def ff_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
         return final_status(disc, met)
     if t < met[M_T_EXC_END] or hdr[S_ON] != 0.0 or par[P_B_SKEW] != 0.0:
         return RUNNING
-    if disc[D_MODE] == MODE_REST and ts_at_rest(y, par, opt):
-        if opt[O_EARLY_EXIT] != 0.0:
+    if disc[D_MODE] != MODE_REST or not ff_sticks_for_good(y, par):
+        return RUNNING
+    early = opt[O_EARLY_EXIT] != 0.0
+    if early and ts_stays_in_contact(y, par, met):
+        return final_status(disc, met)
+    if ts_at_rest(y, par, opt, met):
+        if early:
             ts_set_rest(y, par)
             return final_status(disc, met)
         disc[D_STATIC] = 1

@@ -427,3 +427,68 @@ def test_every_entry_point_runs_the_model(tmp_path):
     import pandas as pd
     h = pd.read_csv(csv)
     assert h["d"].iloc[-1] == pytest.approx(ref.history["d"].iloc[-1], rel=1e-12)
+
+
+# ----------------------------------------------------------- early decisions (issue #15)
+def _energy_above_rest(y, par):
+    return K.ts_energy_above_rest(np.ascontiguousarray(y[:4]), par)[0]
+
+
+@pytest.mark.parametrize("mu", [0.15, 0.5, 1.2])
+def test_sticks_for_good_holds_at_every_state_of_no_more_energy(mu):
+    """ff_sticks_for_good's bound, checked directly: where it holds at a state of energy dE above
+    the static equilibrium, every state of full contact with no more energy (the set the free
+    motion stays in: dE never grows and no corner lifts) has both corner forces > 0 and
+    |H_s| < mu_s N (kernel's own stick_force).  The states are drawn toward the equilibrium from
+    random directions, so both the decided states and their energy shells are covered."""
+    fnd = TwoSpringFoundation(k_v=3.0e4, c_v=40.0)
+    spec, blk = foundation_spec(BLOCK, fnd, friction=Friction(mu))
+    par = spec.par
+    hdr = np.zeros(L.N_EXC)
+    disc = np.zeros(FF.N_DISC_FF, np.int64)
+    disc[K.D_RIGHT] = disc[K.D_LEFT] = 1
+    disc[FF.D_FRIC] = FF.STICK
+    y_eq = np.array([-0.5 * blk.M * blk.g / fnd.k_v, 0.0, 0.0, 0.0, 0.0, 0.0])
+    scale = np.array([1e-4, 1e-2, 1e-3, 3e-2, 0.0, 0.0])
+    rng = np.random.default_rng(11)
+    decided = checked = 0
+    for _ in range(3000):
+        y = y_eq + scale * rng.normal(size=6) * 10 ** rng.uniform(-4, 1)
+        if not FF.ff_sticks_for_good(y, par):
+            continue
+        decided += 1
+        dE = _energy_above_rest(y, par)
+        for _ in range(20):
+            z = y_eq + (y - y_eq) * rng.uniform(-1, 1, size=6)
+            if _energy_above_rest(z, par) > dE:
+                continue
+            fR, fL = FF.normal_forces(z, par, disc)
+            H, N = FF.stick_force(0.0, z, par, disc, hdr, np.zeros(1))
+            assert fR > 0.0 and fL > 0.0
+            assert abs(H) < mu * N
+            checked += 1
+    assert decided > 100 and checked > 1000
+    # and it refuses states whose energy could lift a corner or break the stick
+    far = y_eq + np.array([0.0, 0.0, 0.05, 0.0, 0.0, 0.0])
+    assert not FF.ff_sticks_for_good(far, par)
+
+
+@pytest.mark.parametrize("omega, zeta, mu", [(20.0, 0.1, 0.6), (60.0, 0.2, 0.5), (20.0, 0.3, 0.25)])
+def test_early_decisions_equal_the_full_runs(omega, zeta, mu):
+    """Proved against full runs, as the rigid block's decisions are: on a pulse grid of safe and
+    overturning cells (and, at mu = 0.25, sliding ones), early_exit=True ends most safe runs early (stick on both corners for good:
+    no further lift-off, or the rest rule) and gives the full run's status, outcome and every
+    metric of rotation, slide and contact exactly."""
+    fnd = TwoSpringFoundation.from_vibration(BLOCK, omega, zeta)
+    kw = dict(sign="both", foundation=fnd, progress=False, friction=Friction(mu), rtol=1e-8)
+    amps, freqs = [0.3, 0.6, 0.9, 1.2, 2.0], [1.5, 3.0, 6.0]
+    early = fr.overturning_spectrum(BLOCK, amps, freqs, **kw)
+    full = fr.overturning_spectrum(BLOCK, amps, freqs, early_exit=False, **kw)
+    assert early.attrs["kernel"] == "two_spring_friction"
+    shorter = early["time_end"].to_numpy() < full["time_end"].to_numpy() - 1e-9
+    assert shorter.sum() >= 20
+    assert early["status"].astype(str).str.startswith("safe:").to_numpy()[shorter].all()
+    assert list(early["status"].astype(str)) == list(full["status"].astype(str))
+    for col in ("max_rotation", "max_slide", "residual_slide", "time_sliding", "time_slide_rocking",
+                "stick_slip", "impacts", "time_uplift", "time_overturn"):
+        np.testing.assert_array_equal(early[col].to_numpy(float), full[col].to_numpy(float), err_msg=col)
