@@ -535,3 +535,88 @@ def test_kernel_follows_an_independent_solve_ivp_reference(case):
     for col, i in (("y", 0), ("u", 2), ("theta", 4)):
         scale = np.max(np.abs(y_ref[:, i]))
         np.testing.assert_allclose(h[col], y_ref[:, i], rtol=0, atol=1e-9 * scale, err_msg=col)
+
+
+# ------------------------------------------------------- rest and early decision (issue #15)
+def test_rest_bounds_hold_at_every_state_of_no_more_energy():
+    """ff_rest_bounds, checked directly: where it says no corner can lift from a state of energy
+    dE above the static equilibrium, every full-contact state of no more energy (the set the
+    free motion stays in) has both corner forces > 0, |sin q| <= its bound and |u| <= its bound.
+    States are drawn toward the equilibrium from random directions, at random scales."""
+    KF = kernel()
+    body = FlexibleBody(alpha=0.2, p=2.0, omega_n_over_p=6.0, zeta=0.05, base_mass_ratio=0.3,
+                        base_cm_height=0.05, rotary_inertia_ratio=0.05, mass=2.0)
+    fnd = TwoSpringFoundation.from_vibration(body, 40.0, 0.1)
+    spec, blk = foundation_spec(body, fnd)
+    par = spec.par
+    y_eq = np.array([KF.ff_equilibrium(par), 0, 0, 0, 0, 0])
+    assert y_eq[0] == pytest.approx(-(blk.m + blk.m_b) * body.g / (2 * fnd.k_v), rel=1e-14)
+    disc = np.zeros(L.N_DISC, np.int64)
+    disc[6] = disc[7] = 1
+    scale = np.array([1e-4, 1e-2, 1e-3, 1e-2, 1e-3, 1e-2])
+    rng = np.random.default_rng(17)
+    decided = checked = 0
+    for _ in range(3000):
+        y = y_eq + scale * rng.normal(size=6) * 10 ** rng.uniform(-3, 1)
+        dE, never, s_max, u_max = KF.ff_rest_bounds(y, par)
+        assert dE >= 0.0
+        if not never:
+            continue
+        decided += 1
+        for _ in range(20):
+            z = y_eq + (y - y_eq) * rng.uniform(-1, 1, size=6)
+            if KF.ff_rest_bounds(z, par)[0] > dE:
+                continue
+            forces = [fnd.k_v * -(z[0] - s * blk.b * math.sin(z[4]))
+                      + fnd.c_v * -(z[1] - s * blk.b * math.cos(z[4]) * z[5]) for s in (1.0, -1.0)]
+            assert min(forces) > 0.0
+            assert abs(math.sin(z[4])) <= s_max and abs(z[2]) <= u_max
+            checked += 1
+    assert decided > 100 and checked > 1000
+
+
+@pytest.mark.parametrize("wn, zeta, omega, zeta_f", [(6.0, 0.05, 40.0, 0.1), (10.0, 0.1, 100.0, 0.2)])
+def test_early_decisions_equal_the_full_runs(wn, zeta, omega, zeta_f):
+    """On pulse grids of safe and overturning cells, early_exit=True ends most safe runs early
+    (after the pulse, in full contact, no corner can lift and no maximum can grow, or the rest
+    rule) with the full run's status, outcome and every metric, except the time columns, which
+    count up to the decision (as in the rigid kernels)."""
+    body = FlexibleBody(alpha=0.2, p=2.0, omega_n_over_p=wn, zeta=zeta, base_mass_ratio=0.3,
+                        base_cm_height=0.05, rotary_inertia_ratio=0.05, mass=2.0)
+    fnd = TwoSpringFoundation.from_vibration(body, omega, zeta_f)
+    kw = dict(sign="both", foundation=fnd, progress=False, rtol=1e-8)
+    amps, freqs = [0.3, 0.6, 0.9, 1.2, 2.0], [1.5, 3.0, 6.0]
+    early = fr.overturning_spectrum(body, amps, freqs, **kw)
+    full = fr.overturning_spectrum(body, amps, freqs, early_exit=False, **kw)
+    assert early.attrs["kernel"] == "flexible_two_spring"
+    shorter = early["time_end"].to_numpy() < full["time_end"].to_numpy() - 1e-9
+    assert shorter.sum() >= 20
+    assert early["status"].astype(str).str.startswith("safe:").to_numpy()[shorter].all()
+    assert list(early["status"].astype(str)) == list(full["status"].astype(str))
+    for col in ("max_rotation", "max_deformation", "impacts", "time_uplift", "time_overturn",
+                "energy_gains"):
+        np.testing.assert_array_equal(early[col].to_numpy(float), full[col].to_numpy(float), err_msg=col)
+
+
+def test_full_run_comes_to_rest_at_the_static_equilibrium():
+    """A damped column on damped springs after a pulse: the full run's rest rule sets the static
+    equilibrium and goes on in a static phase, with the maxima of the run without the rule
+    (eps_omega = 0), which integrates the decay to its end in 3 times the steps and ends within
+    the tolerance of that equilibrium."""
+    body = FlexibleBody(alpha=0.2, p=2.0, omega_n_over_p=10.0, zeta=0.3, base_mass_ratio=0.3,
+                        base_cm_height=0.05, rotary_inertia_ratio=0.05, mass=2.0)
+    fnd = TwoSpringFoundation.from_vibration(body, 100.0, 0.2)
+    pulse = Pulse(0.6, 3.0, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
+    run = fr.simulate(body, pulse, foundation=fnd, early_exit=False, solver=fr.Solver(rtol=1e-6))
+    off = fr.simulate(body, pulse, foundation=fnd, early_exit=False,
+                      solver=fr.Solver(rtol=1e-6, eps_omega=0.0))
+    assert run.status == off.status == "safe:no-uplift"
+    for k in ("max_rotation", "max_deformation", "time_end"):
+        assert run.metrics[k] == off.metrics[k], k
+    assert 2 * run.metrics["steps"] < off.metrics["steps"]
+    end, end_off = run.history.iloc[-1], off.history.iloc[-1]
+    assert (end["theta"], end["theta_dot"], end["u"], end["u_dot"], end["y_dot"]) == (0, 0, 0, 0, 0)
+    assert end["y"] == kernel().ff_equilibrium(foundation_spec(body, fnd)[0].par)
+    for c in ("theta", "theta_dot", "u", "u_dot", "y_dot"):
+        assert abs(end_off[c]) < 1e-7, c
+    assert end_off["y"] == pytest.approx(end["y"], abs=1e-8)
