@@ -2006,6 +2006,31 @@ def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
 
 
+@jit
+def settle_on_wall(j, t, y, par, disc, hdr, smp, met, log, cnt):
+    """Pivot j (disc[D_PIVOT]) comes to rest with the top corner at the
+    wall (all velocities 0: dissipative): resting on the wall if the
+    sticking rest is admissible, else the ladder from rest, else the
+    pivot's lift-off along the wall (mu = inf), else the ground-only
+    pick."""
+    s = disc[D_PIVOT]
+    y[1] = 0.0
+    project_single(j, y, par, True)
+    disc[D_PIVOT] = s
+    if wall_rest_margin(t, y, par, disc, hdr, smp) >= 0.0:
+        set_contacts(disc, CS_STICK if j == 0 else CS_OPEN,
+                     CS_STICK if j == 1 else CS_OPEN, CS_FREE)
+        disc[D_PIVOT] = s
+        log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
+        return RUNNING
+    if top_ladder(j, t, y, par, disc, hdr, smp):
+        log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
+        return RUNNING
+    if tip_off_pivot(j, t, y, par, disc, hdr, smp, met, log, cnt):
+        return RUNNING
+    return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
 # ---------------------------------------------------------------- wall
 @jit
 def wall_rest_margin(t, y, par, disc, hdr, smp):
@@ -2798,20 +2823,8 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
         return enter_flight(t, y, par, disc, met, log, cnt)
     floor = not separated and below_rounding(y, par)
     if (settle and (abs(vt) <= V_TOL or chatter)) or floor:
-        y[1] = 0.0
-        project_single(j, y, par, True)
         disc[D_PIVOT] = s
-        if wall_rest_margin(t, y, par, disc, hdr, smp) >= 0.0:
-            set_contacts(disc, CS_STICK if j == 0 else CS_OPEN,
-                         CS_STICK if j == 1 else CS_OPEN, CS_FREE)
-            disc[D_PIVOT] = s
-            log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
-            return RUNNING
-        if top_ladder(j, t, y, par, disc, hdr, smp):
-            log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
-            return RUNNING
-        if tip_off_pivot(j, t, y, par, disc, hdr, smp, met, log, cnt):
-            return RUNNING
+        return settle_on_wall(j, t, y, par, disc, hdr, smp, met, log, cnt)
     return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
 
 
