@@ -92,7 +92,9 @@ the landing corner).  In flight, wall impacts that chatter (closer than
 eps_t, or a rebound below eps_omega times the size) close the wall
 contact (``close_wall_in_flight``): the flight goes on with it closed
 (mode solve, both base corners open) until the wall's force reaches 0
-(K_WALL, K_WALL_BASE) or a landing; the face reaching the wall in flight
+(K_WALL, K_WALL_BASE) or a landing (at zero speed with the top corner's
+contact closed on a frictionless wall, one plastic impact at both
+contacts, ``landing_at_wall``); the face reaching the wall in flight
 stops turning and, pushed, slides down it (face flight, ended by the push
 reaching 0 or the flat landing).  Ground impacts while rocking
 (theta crosses 0) use the map of kernels/friction.py with the sides apart
@@ -2006,6 +2008,126 @@ def landing(j, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
 
 
+@jit
+def landing_at_wall(j, t, y, par, met, log, cnt):
+    """Base corner j lands at zero speed (to rounding) in flight while wall
+    point 2 (the top corner, or a short wall's edge) is held on a
+    frictionless wall: a plastic impact at both contacts solved together
+    (physics.md 4.6, the wall as a contact point): the normal velocities of
+    j and of the wall point to 0, j sticking if |L_t| <= mu_s L_n, else
+    slipping in its pre-impact direction (L_t = -mu_k sigma L_n, the slip
+    not reversed); admissible with both normal impulses >= 0 and no kinetic
+    energy gained.  Then ``pick_at_wall`` keeps both contacts closed.
+
+    A landing with speed is the corner's impulse alone, and a wall impact
+    follows if it drives the wall point into the wall: impacts alternating
+    at one instant, which converge to the joint impact (projected
+    Gauss-Seidel) unless they reach zero speed first.  There nothing is
+    left to dissipate, and no single-contact mode need be admissible: the
+    ground alone needed N < 0, the flight along the wall drove the corner
+    into the ground and free flight the point into the wall, while the
+    two-contact mode (the ladder) was admissible; flight, wall impact, wall
+    rest and landing repeated at one instant until the step budget
+    (contact:2027:430).  Returns False, nothing changed, for a landing with
+    speed or where the joint impact is not admissible (the landing is then
+    the corner's alone, ``landing``)."""
+    mu_s = par[C_MU_S]
+    if wall_frictional(par) or not np.isfinite(mu_s):
+        return False
+    _g, vn, vt = point_kin(j, y, par)
+    if vn < -1e-9 * velocity_scale(y, par):
+        return False
+    before = kinetic_energy(y, par)
+    vgx, vgy = cm_velocity(y, par)
+    om = y[1]
+    post = np.empty(3)
+    st = CS_STICK
+    ok, N0, F0, N1, F1, N2, _F2 = solve_contacts(
+        y, vgx, vgy, om, 0.0, par, st if j == 0 else CS_OPEN,
+        st if j == 1 else CS_OPEN, CS_FREE, post)
+    Ln = N1 if j == 1 else N0
+    Lt = F1 if j == 1 else F0
+    stick = ok and Ln >= 0.0 and N2 >= 0.0 and abs(Lt) <= mu_s * Ln
+    if not stick:
+        if vt == 0.0:
+            return False
+        st = slip_state(sign_of(vt))
+        ok, N0, F0, N1, F1, N2, _F2 = solve_contacts(
+            y, vgx, vgy, om, 0.0, par, st if j == 0 else CS_OPEN,
+            st if j == 1 else CS_OPEN, CS_FREE, post)
+        Ln = N1 if j == 1 else N0
+        if not (ok and Ln >= 0.0 and N2 >= 0.0):
+            return False
+    after, tmp = post_energy(y, par, post)
+    if not after <= before * (1.0 + 1e-12):
+        return False
+    _g, _vn, vt2 = point_kin(j, tmp, par)
+    if not stick and sign_of(vt) * vt2 < 0.0:
+        return False
+    y[:] = tmp
+    met[M_IMPACTS] += 1
+    met[M_T_LAST_IMPACT] = t
+    check_energy(before, after, met)
+    if stick:
+        y[3] -= vt2
+    log_event(log, cnt, t, EV_CONTACT, om, y[1], y[0], 1 if j == 1 else -1)
+    return True
+
+
+@jit
+def pick_at_wall(j, t, y, par, disc, hdr, smp, met, log, cnt):
+    """Base corner j on the ground and wall point 2 at the wall, both
+    normal velocities 0 (after ``landing_at_wall``): at rest if j does not
+    slip (``settle_on_wall``: one degree of freedom, the slip), else the
+    ladder (SLIDE_ROCK with the wall contact closed) where its mode solve is
+    admissible (both normal forces >= 0; a slip not at rest cannot
+    reverse), else the ground-only pick."""
+    s = 1 if j == 1 else -1
+    disc[D_PIVOT] = s
+    project_single(j, y, par, False)
+    _g, _vn, vt = point_kin(j, y, par)
+    if abs(vt) <= V_TOL:
+        return settle_on_wall(j, t, y, par, disc, hdr, smp, met, log, cnt)
+    st = slip_state(sign_of(vt))
+    st0 = st if j == 0 else CS_OPEN
+    st1 = st if j == 1 else CS_OPEN
+    acc = np.empty(3)
+    ok, N0, _F0, N1, _F1, N2, _F2 = mode_solve(t, y, par, st0, st1, CS_FREE,
+                                               hdr, smp, acc)
+    N = N1 if j == 1 else N0
+    if ok and N >= 0.0 and N2 >= 0.0:
+        set_contacts(disc, st0, st1, CS_FREE)
+        return RUNNING
+    set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
+    disc[D_PIVOT] = s
+    return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
+@jit
+def settle_on_wall(j, t, y, par, disc, hdr, smp, met, log, cnt):
+    """Pivot j (disc[D_PIVOT]) comes to rest with the top corner at the
+    wall (all velocities 0: dissipative): resting on the wall if the
+    sticking rest is admissible, else the ladder from rest, else the
+    pivot's lift-off along the wall (mu = inf), else the ground-only
+    pick."""
+    s = disc[D_PIVOT]
+    y[1] = 0.0
+    project_single(j, y, par, True)
+    disc[D_PIVOT] = s
+    if wall_rest_margin(t, y, par, disc, hdr, smp) >= 0.0:
+        set_contacts(disc, CS_STICK if j == 0 else CS_OPEN,
+                     CS_STICK if j == 1 else CS_OPEN, CS_FREE)
+        disc[D_PIVOT] = s
+        log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
+        return RUNNING
+    if top_ladder(j, t, y, par, disc, hdr, smp):
+        log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
+        return RUNNING
+    if tip_off_pivot(j, t, y, par, disc, hdr, smp, met, log, cnt):
+        return RUNNING
+    return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
 # ---------------------------------------------------------------- wall
 @jit
 def wall_rest_margin(t, y, par, disc, hdr, smp):
@@ -2592,6 +2714,12 @@ def at_face(y, par):
     if not near_at_wall(y, par):
         return False
     bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
+    if short_wall(par) and \
+            abs(math.sin(y[0])) * par[C_H_WALL] > FACE_RTOL * bw:
+        # a short wall's edge at the base corner itself (the body leaning
+        # on the edge by that corner, tilted): no face contact, which the
+        # face impact would make flat at once (contact:2027:430)
+        return False
     gap, _vn, _vt = point_kin(2, y, par)
     return gap <= FACE_RTOL * bw
 
@@ -2798,20 +2926,8 @@ def wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt, kw=2):
         return enter_flight(t, y, par, disc, met, log, cnt)
     floor = not separated and below_rounding(y, par)
     if (settle and (abs(vt) <= V_TOL or chatter)) or floor:
-        y[1] = 0.0
-        project_single(j, y, par, True)
         disc[D_PIVOT] = s
-        if wall_rest_margin(t, y, par, disc, hdr, smp) >= 0.0:
-            set_contacts(disc, CS_STICK if j == 0 else CS_OPEN,
-                         CS_STICK if j == 1 else CS_OPEN, CS_FREE)
-            disc[D_PIVOT] = s
-            log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
-            return RUNNING
-        if top_ladder(j, t, y, par, disc, hdr, smp):
-            log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
-            return RUNNING
-        if tip_off_pivot(j, t, y, par, disc, hdr, smp, met, log, cnt):
-            return RUNNING
+        return settle_on_wall(j, t, y, par, disc, hdr, smp, met, log, cnt)
     return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
 
 
@@ -3011,6 +3127,10 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             pick_wall_flight(kw, t, y, par, disc, hdr, smp, -1)
             return RUNNING
         if k == K_LAND0 or k == K_LAND1:
+            if kw == 2 and landing_at_wall(k - K_LAND0, t, y, par, met, log,
+                                           cnt):
+                return pick_at_wall(k - K_LAND0, t, y, par, disc, hdr, smp,
+                                    met, log, cnt)
             # the landing's impulse is the base corner's alone; a wall
             # contact it closes again is a wall impact
             set_contacts(disc, CS_OPEN, CS_OPEN, CS_OPEN)
@@ -3050,6 +3170,20 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
                            not jam)
     # K_STICK: the slip velocity reached zero
+    if mode == MODE_SLIDE_ROCK and wall_top(disc[D_CS2]) and \
+            near_at_wall(y, par):
+        _g, vnw, _vt = point_kin(K_NEAR, y, par)
+        if vnw < -1e-9 * velocity_scale(y, par):
+            # a ladder on a short wall's edge whose contact point reached
+            # the face's end, the base corner: there the edge's constraint
+            # has no lever arm about the pivot and stops its slip, while
+            # the corner meets the wall's face below the edge moving into
+            # it: a wall impact of that corner.  (The ground pick stopped
+            # the body dead on the edge's vertex, a singular rest that
+            # repeated zero-velocity wall impacts: contact:2027:430)
+            set_single(j, disc[D_CS0 + j], disc)
+            return wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt,
+                               K_NEAR)
     met[M_N_STICK_SLIP] += 1
     if mode == MODE_SLIDE:
         y[3] = 0.0

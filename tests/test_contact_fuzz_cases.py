@@ -243,3 +243,109 @@ def test_contact_2027_494_nearly_flat_at_the_wall_lifts_off_instead_of_sliding_i
     assert len(lift) == 1 and ev.loc[lift[0] + 1, "event"] == "wall-rest"
     # no zero-time loop anywhere: at most 40 events share an instant (the chatter's accumulation)
     assert ev["t"].value_counts().max() < 40
+
+
+CASE430 = dict(
+    body=RigidBlock.rectangle(b=0.0944837352637574, h=0.22288357233616352),
+    gap=0.0001771429620565559, height=0.17065293437093018, restitution=0.8948511110062355,
+    friction=Friction(0.5104431375337025, 0.5104431375337025, slide_tolerance=1e-3, lift_off="flight"),
+    solver=Solver(rtol=3.656268901350071e-08, eps_t=1e-9, eps_omega=1e-9),
+    frequency=0.34266606762500224, pulse="one-cosine")
+
+
+def _run430(amplitude, side):
+    c = CASE430
+    pulse = Pulse(amplitude, c["frequency"], side, c["pulse"], amplitude_unit="g_tan_alpha",
+                  frequency_unit="omega_p/p")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return simulate(c["body"], pulse, wall=Wall(c["gap"], side=side, height=c["height"],
+                                                    restitution=c["restitution"]),
+                        friction=c["friction"], solver=c["solver"], t_after=10.0)
+
+
+def _cm(h, body):
+    """CM position and velocity, and the mechanical energy per unit mass, of history rows h."""
+    th, om = h["theta"].to_numpy(), h["theta_dot"].to_numpy()
+    xg = h["d"].to_numpy() + body.h * np.sin(th)
+    yg = h["z"].to_numpy() + body.h * np.cos(th)
+    vx = h["d_dot"].to_numpy() + body.h * np.cos(th) * om
+    vy = h["z_dot"].to_numpy() - body.h * np.sin(th) * om
+    iG = (body.b ** 2 + body.h ** 2) / 3.0
+    energy = 0.5 * (vx * vx + vy * vy + iG * om * om) + 9.80665 * yg
+    return xg, yg, vx, vy, energy
+
+
+def _corner_velocity(h, body, a, c):
+    """Velocity of the body point (a, c) (body frame, from the CM) on history rows h."""
+    th, om = h["theta"].to_numpy(), h["theta_dot"].to_numpy()
+    _xg, _yg, vx, vy, _e = _cm(h, body)
+    rx = a * np.cos(th) + c * np.sin(th)
+    ry = -a * np.sin(th) + c * np.cos(th)
+    return vx + om * ry, vy - om * rx
+
+
+def _edge_gap(th, xg, yg, side):
+    """Signed distance of the short wall's top edge E to the body's wall-side face (wall_geom,
+    WG_EDGE)."""
+    c = CASE430
+    b = c["body"].b
+    ex = side * (b + c["gap"]) - xg
+    ey = c["height"] - yg
+    return side * (np.cos(th) * ex - np.sin(th) * ey) - b
+
+
+@pytest.mark.parametrize("amplitude", (10.435743165206445, 3.4184446522652756))
+def test_contact_2027_430_zero_speed_landing_with_the_edge_held_is_one_joint_impact(amplitude):
+    """contact:2027:430 (failed:step-budget, 2 cells): a block (b/h = 0.42) thrown onto its side
+    slides back into a wall of 0.38 of its height (mu 0.51, flight, e_w 0.89) at 9 m/s; the wall's
+    edge turns the slide into a spin (13 and 54 rad/s) and the block flies with its face on the
+    edge.  The edge's contact closes in flight (a Zeno sequence of wall impacts), and the far base
+    corner lands.  Landings alone and wall impacts alternate at one instant and converge to zero
+    speed at both contacts.  There the landing changed nothing: the ground alone needs N < 0,
+    flight along the edge drives the corner into the ground, free flight the face into the edge,
+    and flight, wall impact, wall rest and landing repeated until the step budget.  The
+    two-contact mode, the pivot slipping with the face on the edge (the ladder), is admissible
+    there.  Now that zero-speed landing is one plastic impact at both contacts (Coulomb at the
+    corner), then the ladder; at the face's end (its contact point reaches the base corner, where
+    the edge's constraint stops the slip) the base corner meets the wall's face: a wall impact, a
+    flight, and the spinning block tips over (mode 1).  Checks: the joint impact keeps both
+    contacts closed with the slip not reversed and loses energy, no transition moves the body,
+    the run ends well inside the step budget, and the mirror image gives the same run."""
+    body = CASE430["body"]
+    runs = {side: _run430(amplitude, side) for side in (1, -1)}
+    run = runs[1]
+    assert run.status == runs[-1].status == "overturn:mode1", (run.status, runs[-1].status)
+    assert math.isclose(runs[1].metrics["max_rotation"], runs[-1].metrics["max_rotation"], rel_tol=1e-9)
+    assert len(run.events) < 1000 and run.metrics["steps"] < 1000
+    # the joint landing: flight (the edge held) to the ladder (slide-rock) at one instant
+    h = run.history.reset_index(drop=True)
+    joint = h.index[(h["contact"] == "slide-rock") & (h["contact"].shift(1) == "flight")
+                    & (h["t"].diff() == 0.0)]
+    assert len(joint) == 1
+    pre, post = h.loc[[joint[0] - 1]], h.loc[[joint[0]]]
+    ev = run.events.reset_index(drop=True)
+    after = ev[ev["t"] > post["t"].iloc[0]]
+    # ... then the ladder until the base corner's wall impact, a flight and the overturn
+    assert list(after["event"]) == ["wall-impact", "flight", "overturn"]
+    *_, e_pre = _cm(pre, body)
+    *_, e_post = _cm(post, body)
+    assert e_post[0] <= e_pre[0]
+    # admissible post-impact velocities: the landing corner (the left base corner, pivot -1)
+    # stays on the ground (normal velocity 0) and keeps slipping its way; the face stays on the
+    # edge (the gap's rate 0)
+    vx_pre, _vy = _corner_velocity(pre, body, -body.b, -body.h)
+    vx_post, vy_post = _corner_velocity(post, body, -body.b, -body.h)
+    scale = abs(post["theta_dot"].iloc[0]) * body.h
+    assert abs(vy_post[0]) <= 1e-9 * scale
+    assert vx_post[0] * vx_pre[0] > 0.0
+    xg, yg, vx, vy, _e = _cm(post, body)
+    th, om = post["theta"].to_numpy(), post["theta_dot"].to_numpy()
+    dt = 1e-7
+    rate = (_edge_gap(th + om * dt, xg + vx * dt, yg + vy * dt, 1)
+            - _edge_gap(th - om * dt, xg - vx * dt, yg - vy * dt, 1)) / (2 * dt)
+    assert abs(_edge_gap(th, xg, yg, 1)[0]) <= 1e-6 * body.b
+    assert abs(rate[0]) <= 1e-6 * scale
+    # no transition moves the body (a face impact at the edge's vertex used to set theta = 0)
+    same = h["t"].diff() == 0.0
+    assert (h["theta"].diff()[same].abs() <= 1e-12).all()
