@@ -69,13 +69,13 @@ from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT,
                          TS_CROSS, TS_LEFT, TS_OVERTURN, TS_PASS_ALPHA,
                          TS_PEAK, TS_RIGHT, corner_arm, corner_force,
                          never_static, ts_init_corners, ts_shared_event,
-                         ts_shared_transition)
+                         ts_shared_transition, within_tolerance)
 from .hybrid import book_time, final_status, integrate_hybrid, sweep_rows
 from .layout import (D_MODE, D_STATIC, MODE_REST, M_MAX_THETA_NEG,
                      M_MAX_THETA_POS, M_MAX_U, M_MIN_U, M_T_EXC_END, N_DISC,
-                     O_ATOL, O_EARLY_EXIT, O_EPS_OMEGA, O_RTOL, O_T0, P_B,
-                     P_B_SKEW, P_CV, P_G, P_KV, PF_H, PF_HB, PF_IB, PF_IM,
-                     PF_M, PF_MB, PF_WN, PF_ZETA, RUNNING, S_ON)
+                     O_EARLY_EXIT, O_EPS_OMEGA, O_T0, P_B, P_B_SKEW, P_CV,
+                     P_G, P_KV, PF_H, PF_HB, PF_IB, PF_IM, PF_M, PF_MB, PF_WN,
+                     PF_ZETA, RUNNING, S_ON)
 from .rigid import track_rotation
 
 from .layout import N_PAR_FOUNDATION_FLEXIBLE as N_PAR  # noqa: E402,F401
@@ -242,20 +242,6 @@ def ff_within_maxima(sin_max, u_max, met):
 
 
 @jit
-def ff_within_tolerance(y, par, opt):
-    """The state is the static equilibrium to within the solver's tolerance
-    (kernels/foundation.py, ts_within_tolerance)."""
-    atol = opt[O_ATOL]
-    y_eq = ff_equilibrium(par)
-    if abs(y[0] - y_eq) > atol + opt[O_RTOL] * abs(y_eq):
-        return False
-    for i in range(1, 6):
-        if abs(y[i]) > atol:
-            return False
-    return True
-
-
-@jit
 def ff_set_rest(y, par):
     y[0] = ff_equilibrium(par)
     for i in range(1, 6):
@@ -290,7 +276,7 @@ def ff_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     if not eps_w > 0.0:
         return RUNNING
     if (dE <= 0.5 * (par[PF_IM] + par[PF_IB]) * eps_w * eps_w
-            or bounded and ff_within_tolerance(y, par, opt)):
+            or bounded and within_tolerance(y, ff_equilibrium(par), opt)):
         if early:
             ff_set_rest(y, par)
             return final_status(disc, met)
