@@ -777,10 +777,49 @@ def sw_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
 
 
 @jit
+def sdof_stays_in_contact(y, par, met, uplift):
+    """Exact sufficient test (early decision) for the contact phase of the
+    switching model (``uplift``) and for the linear model, after the
+    excitation on level ground: no uplift ever again, and no rotation past
+    the maxima so far.
+
+    With E = I_C q'^2 / 2 + k_t q^2 / 2 - M g h (1 - cos q) the free contact
+    motion has dE/dt = -c_t q'^2 <= 0, and 1 - cos q <= q^2 / 2 gives
+    E >= I_C q'^2 / 2 + kappa q^2 / 2, kappa = k_t - M g h > 0: |q| <=
+    sqrt(2 E / kappa) for good, and by Cauchy-Schwarz (k_t q + c_t q')^2
+    <= 2 E (k_t^2 / kappa + c_t^2 / I_C), below the uplift moment's
+    (M g b)^2.  (The linear model has no gravity term and no uplift.)"""
+    I = par[P_I_C]
+    k = par[P_KT]
+    c = par[P_CT]
+    Mgh = par[P_MASS] * par[P_G] * par[P_H] if uplift else 0.0
+    kappa = k - Mgh
+    if not kappa > 0.0:
+        return False
+    q = y[0]
+    half = math.sin(0.5 * q)
+    E = max(0.5 * I * y[1] * y[1] + 0.5 * k * q * q
+            - 2.0 * Mgh * half * half, 0.0)
+    if uplift:
+        Mgb = par[P_MASS] * par[P_G] * par[P_B]
+        if not 2.0 * E * (k * k / kappa + c * c / I) < Mgb * Mgb:
+            return False
+    return math.sqrt(2.0 * E / kappa) <= min(met[M_MAX_THETA_POS],
+                                             met[M_MAX_THETA_NEG])
+
+
+@jit
+def sdof_decided(t, y, par, disc, hdr, opt, met, uplift):
+    return (opt[O_EARLY_EXIT] != 0.0 and disc[D_MODE] == MODE_REST
+            and t >= met[M_T_EXC_END] and hdr[S_ON] == 0.0
+            and sdof_stays_in_contact(y, par, met, uplift))
+
+
+@jit
 def sw_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     track_rotation(y[0], met)
     book_time(t, disc, met)
-    if at_end:
+    if at_end or sdof_decided(t, y, par, disc, hdr, opt, met, True):
         return final_status(disc, met)
     return RUNNING
 
@@ -859,7 +898,7 @@ def ls_transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
 def ls_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
     track_rotation(y[0], met)
     book_time(t, disc, met)
-    if at_end:
+    if at_end or sdof_decided(t, y, par, disc, hdr, opt, met, False):
         return final_status(disc, met)
     return RUNNING
 

@@ -452,3 +452,66 @@ def corner_forces(fnd, state, disc, x_right, x_left):
         dd = -(state[1] - x * math.cos(state[2]) * state[3])
         forces.append((fnd.k_v * d + fnd.c_v * dd) if disc[slot] else 0.0)
     return forces
+
+
+# ------------------------------------------- early decisions of the SDOF models (issue #15)
+SDOF_BLOCK = fr.RigidBlock.rectangle(b=0.2, h=0.6)
+SDOF_CASES = [(SwitchingFoundation, 20.0, 0.1), (SwitchingFoundation, 60.0, 0.05),
+              (LinearVibration, 20.0, 0.05)]
+
+
+@pytest.mark.parametrize("model, omega, zeta", SDOF_CASES)
+def test_sdof_contact_bound_holds_at_every_state_of_no_more_energy(model, omega, zeta):
+    """sdof_stays_in_contact's bounds, checked directly: where the test passes (maxima set to
+    its own bound), every contact state of no more energy E = I_C q'^2/2 + k_t q^2/2 -
+    M g h (1 - cos q) has the uplift moment |k_t q + c_t q'| < M g b (switching) and |q| within
+    the bound."""
+    fnd = model.from_vibration(SDOF_BLOCK, omega, zeta)
+    spec, blk = foundation_spec(SDOF_BLOCK, fnd)
+    par = spec.par
+    uplift = model is SwitchingFoundation
+    Mgh = blk.M * SDOF_BLOCK.g * blk.h if uplift else 0.0
+    energy = lambda q, w: 0.5 * blk.I_C * w * w + 0.5 * fnd.k_t * q * q - 2 * Mgh * math.sin(q / 2) ** 2  # noqa: E731
+    rng = np.random.default_rng(23)
+    met = np.zeros(L.N_MET)
+    decided = checked = 0
+    for _ in range(2000):
+        y = np.array([rng.normal(0, 0.02), rng.normal(0, 0.3)]) * 10 ** rng.uniform(-3, 0.5)
+        met[L.M_MAX_THETA_POS] = met[L.M_MAX_THETA_NEG] = np.inf
+        if not K.sdof_stays_in_contact(y, par, met, uplift):
+            continue
+        decided += 1
+        E = energy(*y)
+        bound = math.sqrt(2 * E / (fnd.k_t - Mgh))
+        met[L.M_MAX_THETA_POS] = met[L.M_MAX_THETA_NEG] = bound * (1 + 1e-12)
+        assert K.sdof_stays_in_contact(y, par, met, uplift)
+        met[L.M_MAX_THETA_NEG] = 0.99 * bound
+        assert not K.sdof_stays_in_contact(y, par, met, uplift)
+        for _ in range(20):
+            z = y * rng.uniform(-1.5, 1.5, size=2)
+            if energy(*z) > E:
+                continue
+            assert abs(z[0]) <= bound * (1 + 1e-12)
+            if uplift:
+                assert abs(fnd.k_t * z[0] + fnd.c_t * z[1]) < blk.M * SDOF_BLOCK.g * SDOF_BLOCK.b
+            checked += 1
+    assert decided > 200 and checked > 1000
+
+
+@pytest.mark.parametrize("model, omega, zeta", SDOF_CASES)
+def test_sdof_early_decisions_equal_the_full_runs(model, omega, zeta):
+    """On pulse grids (safe, rocking and overturning cells for the switching model), early_exit
+    ends the runs that stay in contact after the pulse with the full run's status and metrics;
+    the time columns count up to the decision."""
+    fnd = model.from_vibration(SDOF_BLOCK, omega, zeta)
+    kw = dict(sign="both", foundation=fnd, progress=False, rtol=1e-8)
+    amps, freqs = [0.3, 0.6, 0.9, 1.2, 2.0], [1.5, 3.0, 6.0]
+    early = fr.overturning_spectrum(SDOF_BLOCK, amps, freqs, **kw)
+    full = fr.overturning_spectrum(SDOF_BLOCK, amps, freqs, early_exit=False, **kw)
+    shorter = early["time_end"].to_numpy() < full["time_end"].to_numpy() - 1e-9
+    assert shorter.sum() >= 20
+    assert early["status"].astype(str).str.startswith("safe:").to_numpy()[shorter].all()
+    assert list(early["status"].astype(str)) == list(full["status"].astype(str))
+    for col in ("max_rotation", "impacts", "time_uplift", "time_overturn"):
+        np.testing.assert_array_equal(early[col].to_numpy(float), full[col].to_numpy(float), err_msg=col)
+    assert early["nfev"].sum() < 0.5 * full["nfev"].sum()
