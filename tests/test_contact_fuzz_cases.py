@@ -25,6 +25,8 @@ import numpy as np
 import pytest
 
 from fastrock import Friction, Pulse, RigidBlock, Solver, Wall, overturning_spectrum, simulate
+from fastrock.kernels import contact as C
+from fastrock.running.models import contact_par
 
 FACE_RTOL = 1e-6        # kernels/contact.py: the guard's band, relative to the half-width
 
@@ -349,3 +351,39 @@ def test_contact_2027_430_zero_speed_landing_with_the_edge_held_is_one_joint_imp
     # no transition moves the body (a face impact at the edge's vertex used to set theta = 0)
     same = h["t"].diff() == 0.0
     assert (h["theta"].diff()[same].abs() <= 1e-12).all()
+
+
+CASE251 = dict(
+    body=RigidBlock.rectangle(b=0.205698, h=0.487192),
+    wall=Wall(gap=2.50743e-07, side=-1, height=0.3573649824720119, restitution=1),
+    friction=Friction(0.849868, 0.849868, lift_off="stop"))
+
+
+@pytest.mark.xfail(strict=True, reason="contact:2027:251 open: wall_geom measures a short wall's "
+                   "edge E against the wall-side face's line continued past the base corner")
+def test_contact_2027_251_edge_beyond_the_base_corner_is_not_a_face_contact():
+    """contact:2027:251 (failed:step-budget since 505190b, a zero-time loop of wall impacts at
+    t = 0.4455 s).  The block (b/h = 0.42) rocks on its far corner, tilted away from a wall of
+    0.73 of its height (theta = 1.15 rad), and its pivot slides toward the wall.  At the run's
+    first wall impact (t = 0.35558 s, this state, taken from the run) the edge E lies on the
+    wall-side face's line but 4.3 cm beyond the face's lower end, the base corner: outside the
+    body, whose nearest point, that corner, is 4.3 cm away.  wall_geom (WG_EDGE) puts no lower
+    bound on E's place along the face, so its gap is 0 there and the impact takes 98 % of the
+    kinetic energy from a contact that does not exist; the impacts that follow (to t = 0.426)
+    are of the same kind, and the zero-time loop is the same measure at second order: released
+    from resting on E by the base corner, the corner rises off E about the far pivot and the
+    continued line "approaches" E at 1e-12 m/s."""
+    c = CASE251
+    par = contact_par(c["body"], c["friction"], c["wall"])
+    y = np.array([1.1470058907085037, 3.156335454967597, -0.08201462029273997,
+                  -2.965259721405516, 0.18750129585712685, 0.2669844006213146])
+    b, h = c["body"].b, c["body"].h
+    th = y[0]
+    # independent geometry: the base midpoint at (d, z), the wall-side (left) base corner and E
+    cx, cy = y[2] - b * math.cos(th), y[4] + b * math.sin(th)
+    # the wall (side -1) has its face at x = -(b + gap), its edge at the height h_w
+    ex, ey = -(b + c["wall"].gap), c["wall"].height
+    dist = math.hypot(ex - cx, ey - cy)
+    assert dist > 0.04
+    gap, *_rest, kind = C.wall_geom(y, par)
+    assert gap >= 0.5 * dist, (gap, kind)
