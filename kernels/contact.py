@@ -331,6 +331,28 @@ def point_offset(k, theta, par):
 
 
 @jit
+def edge_past_base(y, par):
+    """The wall contact is a short wall's edge E against the wall-side face
+    (WG_EDGE) at a place along the face's line below its lower end, the base
+    corner: outside the body.  wall_geom measures E against the face's
+    continuation there, a contact the body does not have; its impacts took
+    most of a sliding block's energy and left it "leaning" metres from the
+    wall (contact:2027:251).  Until E is measured against the base, a wall
+    impact there ends the run as failed:face-contact rather than as a wrong
+    answer."""
+    if not short_wall(par):
+        return False
+    _gap, rx, ry, _nx, _ny, _tx, _ty, kind = wall_geom(y, par)
+    if kind != WG_EDGE:
+        return False
+    w = par[P_WALL_SIDE]
+    hs = par[C_H2] if w > 0.0 else par[C_H1]
+    bw = par[C_B2] if w > 0.0 else par[C_B1]
+    # at the corner itself (to the face tolerance) E touches the body
+    return rx * math.sin(y[0]) + ry * math.cos(y[0]) < -hs - FACE_RTOL * bw
+
+
+@jit
 def short_wall(par):
     """The wall is lower than the body's wall-side top corner."""
     return par[C_H_WALL] > 0.0
@@ -3144,6 +3166,8 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             log_event(log, cnt, t, EV_WALL_RELEASE, y[1], y[1], y[0], s)
             return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
                                False)
+        if edge_past_base(y, par):
+            return FAIL_FACE_CONTACT
         return wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
     if k == K_WALL_BASE:
         if mode != MODE_FLIGHT and wall_base(disc[D_CS2]):
