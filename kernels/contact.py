@@ -207,6 +207,8 @@ WG_CORNER = 0     # the top corner against the wall's face (below E)
 WG_EDGE = 1       # E against the body's wall-side face
 WG_VERTEX = 2     # the top corner against E itself (the body above E)
 WG_TOP = 3        # E against the body's top face (the body over the wall)
+WG_BOTTOM = 4     # E against the body's bottom face (the base over the wall)
+WG_BASE = 5       # the wall-side base corner against E itself
 
 # ---- discrete state: one contact state per contact point -------------------
 D_CS0 = 5
@@ -331,28 +333,6 @@ def point_offset(k, theta, par):
 
 
 @jit
-def edge_past_base(y, par):
-    """The wall contact is a short wall's edge E against the wall-side face
-    (WG_EDGE) at a place along the face's line below its lower end, the base
-    corner: outside the body.  wall_geom measures E against the face's
-    continuation there, a contact the body does not have; its impacts took
-    most of a sliding block's energy and left it "leaning" metres from the
-    wall (contact:2027:251).  Until E is measured against the base, a wall
-    impact there ends the run as failed:face-contact rather than as a wrong
-    answer."""
-    if not short_wall(par):
-        return False
-    _gap, rx, ry, _nx, _ny, _tx, _ty, kind = wall_geom(y, par)
-    if kind != WG_EDGE:
-        return False
-    w = par[P_WALL_SIDE]
-    hs = par[C_H2] if w > 0.0 else par[C_H1]
-    bw = par[C_B2] if w > 0.0 else par[C_B1]
-    # at the corner itself (to the face tolerance) E touches the body
-    return rx * math.sin(y[0]) + ry * math.cos(y[0]) < -hs - FACE_RTOL * bw
-
-
-@jit
 def short_wall(par):
     """The wall is lower than the body's wall-side top corner."""
     return par[C_H_WALL] > 0.0
@@ -386,10 +366,16 @@ def wall_geom(y, par):
     body; the gap is E's signed distance to the face line); past the top
     corner, the top face (WG_TOP: the body over the wall), or the top
     corner against the wall's face below E (WG_CORNER) or against E itself
-    (WG_VERTEX, gap their distance).  Inside the body the nearer of the
-    face and the top: the gap is E's signed distance to the body near
-    them, continuous, so a crossing, or a pass through the body inside one
-    flight step (a minimum), is located.
+    (WG_VERTEX, gap their distance); below the base's line, the bottom
+    face (WG_BOTTOM: the base over the wall) or, past the base corner, that
+    corner against E (WG_BASE, gap their distance; the corner against the
+    wall's face below E is the K_NEAR contact's).  Inside the body the
+    nearest of the face, the top and the bottom: the gap is E's signed
+    distance to the body near them, continuous, so a crossing, or a pass
+    through the body inside one flight step (a minimum), is located.
+    (The face's line continued past the base corner is no contact: E
+    there, outside the body, read gap 0, and its impacts took most of a
+    sliding block's energy, contact:2027:251.)
 
     A rounded top corner (radius rho = par[C_TOP_R] > 0, centre C =
     ``body_point(2)``; docs: theory/wall): the face ends at ht_w - rho and
@@ -419,6 +405,23 @@ def wall_geom(y, par):
     ht = par[C_HT2] if w > 0.0 else par[C_HT1]
     # E's coordinate across the face, toward the wall side
     u = w * (c * ex - sn * ey)
+    hs = par[C_H2] if w > 0.0 else par[C_H1]
+    d_bot = -hs - cE
+    if d_bot > 0.0 or (d_bot > u - bw and d_bot > cE - ht):
+        if u <= bw:
+            # E below the bottom face (or inside the body nearest to it)
+            qx = u * w * c - hs * sn
+            qy = -u * w * sn - hs * c
+            return d_bot, qx, qy, sn, c, w * c, -w * sn, WG_BOTTOM
+        rx, ry = point_offset(K_NEAR, th, par)
+        dx = rx - ex
+        dy = ry - ey
+        dist = math.hypot(dx, dy)
+        if dist == 0.0:
+            return 0.0, rx, ry, -w * c, w * sn, sn, c, WG_BASE
+        nx = dx / dist
+        ny = dy / dist
+        return dist, rx, ry, nx, ny, w * ny, -w * nx, WG_BASE
     if cE <= ht - rho and u - bw >= cE - ht:
         # face point Q = b_w n_f + cE t_f, n_f = (w c, -w sn), t_f = (sn, c)
         qx = w * bw * c + cE * sn
@@ -503,6 +506,8 @@ def wall_normal_rate(y, par):
         _fx, _fy, rolling = arc_front(y[0], par)
         return -rho * om * om if rolling else 0.0
     vgx, vgy = cm_velocity(y, par)
+    if kind == WG_BASE:
+        return 0.0
     if kind == WG_VERTEX:
         if rho == 0.0:
             return 0.0
@@ -860,6 +865,24 @@ def near_index(par):
 
 
 @jit
+def near_gap(y, par):
+    """Clear distance of the wall-side base corner to the wall and its
+    rate: to the wall's face, or, above a short wall's top by more than
+    that, the height above the top (the corner passes over the wall; its
+    contact with the edge E is the wall contact's, WG_BASE and WG_BOTTOM
+    of ``wall_geom``).  Continuous where the corner is outside the face."""
+    gap, vn, _vt = point_kin(K_NEAR, y, par)
+    if not short_wall(par):
+        return gap, vn
+    rx, ry = point_offset(K_NEAR, y[0], par)
+    above = y[4] + hmid(par) * math.cos(y[0]) + ry - par[C_H_WALL]
+    if above <= gap:
+        return gap, vn
+    _vgx, vgy = cm_velocity(y, par)
+    return above, vgy - y[1] * rx
+
+
+@jit
 def approach_gap(kw, y, par):
     """Wall gap of wall point kw (2 or K_NEAR) and its rate.  Unlike the
     top corner's event (inf while it moves away) the gap is always
@@ -869,6 +892,8 @@ def approach_gap(kw, y, par):
     root (g0 <= 0 < g1)."""
     if not wall_active(par):
         return np.inf, 0.0
+    if kw == K_NEAR:
+        return near_gap(y, par)
     gap, vn, _vt = point_kin(kw, y, par)
     return gap, vn
 
@@ -982,8 +1007,9 @@ def event(k, t, y, par, disc, hdr, smp):
             # (issue #14); and a drift of 1e-12 m put the corner on the
             # wall at theta ~ 1e-5, an ill-conditioned impact that gained
             # energy.
+            g_face, _vn, _vt = point_kin(K_NEAR, y, par)
             sh = math.sin(0.5 * y[0])
-            g_flat = g - 2.0 * (par[C_B1] + par[C_B2]) * sh * sh
+            g_flat = g_face - 2.0 * (par[C_B1] + par[C_B2]) * sh * sh
             bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
             if g_flat >= -FACE_RTOL * bw:
                 return np.inf, 0.0, True
@@ -1467,7 +1493,7 @@ def near_at_wall(y, par):
     if not wall_active(par):
         return False
     bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
-    gap, _vn, _vt = point_kin(K_NEAR, y, par)
+    gap, _vn = near_gap(y, par)
     return gap <= FACE_RTOL * bw
 
 
@@ -3166,8 +3192,6 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
             log_event(log, cnt, t, EV_WALL_RELEASE, y[1], y[1], y[0], s)
             return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt,
                                False)
-        if edge_past_base(y, par):
-            return FAIL_FACE_CONTACT
         return wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt)
     if k == K_WALL_BASE:
         if mode != MODE_FLIGHT and wall_base(disc[D_CS2]):
@@ -3227,7 +3251,7 @@ def base_in_wall(y, par):
     if not wall_active(par):
         return False
     bw = par[C_B2] if par[P_WALL_SIDE] > 0.0 else par[C_B1]
-    gap, _vn, _vt = point_kin(K_NEAR, y, par)
+    gap, _vn = near_gap(y, par)
     return gap < -FACE_RTOL * bw
 
 

@@ -297,9 +297,10 @@ def _edge_gap(th, xg, yg, side):
     return side * (np.cos(th) * ex - np.sin(th) * ey) - b
 
 
-@pytest.mark.xfail(strict=True, reason="the wall contacts of contact:2027:430 are phantom (the edge "
-                   "beyond the base corner, contact:2027:251): the run now ends failed:face-contact at "
-                   "its first wall impact; the joint landing it tests is not reached")
+@pytest.mark.xfail(strict=True, reason="the wall contacts of contact:2027:430 were phantom (the edge "
+                   "beyond the base corner, contact:2027:251): measured against the base, the block "
+                   "never reaches the wall and overturns away from it; the joint landing it tests "
+                   "is not reached")
 @pytest.mark.parametrize("amplitude", (10.435743165206445, 3.4184446522652756))
 def test_contact_2027_430_zero_speed_landing_with_the_edge_held_is_one_joint_impact(amplitude):
     """contact:2027:430 (failed:step-budget, 2 cells): a block (b/h = 0.42) thrown onto its side
@@ -362,8 +363,6 @@ CASE251 = dict(
     friction=Friction(0.849868, 0.849868, lift_off="stop"))
 
 
-@pytest.mark.xfail(strict=True, reason="contact:2027:251 open: wall_geom measures a short wall's "
-                   "edge E against the wall-side face's line continued past the base corner")
 def test_contact_2027_251_edge_beyond_the_base_corner_is_not_a_face_contact():
     """contact:2027:251 (failed:step-budget since 505190b, a zero-time loop of wall impacts at
     t = 0.4455 s).  The block (b/h = 0.42) rocks on its far corner, tilted away from a wall of
@@ -375,7 +374,8 @@ def test_contact_2027_251_edge_beyond_the_base_corner_is_not_a_face_contact():
     kinetic energy from a contact that does not exist; the impacts that follow (to t = 0.426)
     are of the same kind, and the zero-time loop is the same measure at second order: released
     from resting on E by the base corner, the corner rises off E about the far pivot and the
-    continued line "approaches" E at 1e-12 m/s."""
+    continued line "approaches" E at 1e-12 m/s.  Now E below the base's line is measured against
+    the bottom face and, past the base corner, against that corner: the gap is their distance."""
     c = CASE251
     par = contact_par(c["body"], c["friction"], c["wall"])
     y = np.array([1.1470058907085037, 3.156335454967597, -0.08201462029273997,
@@ -389,7 +389,9 @@ def test_contact_2027_251_edge_beyond_the_base_corner_is_not_a_face_contact():
     dist = math.hypot(ex - cx, ey - cy)
     assert dist > 0.04
     gap, *_rest, kind = C.wall_geom(y, par)
-    assert gap >= 0.5 * dist, (gap, kind)
+    # E lies just off the corner's normal to the bottom face: the bottom face's foot and the
+    # corner are equally near (to 1e-16 m)
+    assert kind in (C.WG_BOTTOM, C.WG_BASE) and gap == pytest.approx(dist, rel=1e-12), (gap, kind)
 
 
 def _edge_outside_body(row, body, wall):
@@ -405,14 +407,17 @@ def _edge_outside_body(row, body, wall):
 
 
 @pytest.mark.parametrize("case", ["251", "430+", "430-"])
-def test_a_wall_impact_of_the_edge_past_the_base_corner_is_refused(case):
-    """contact:2027:251 and :430: the short wall's edge E meets the wall-side face's line past the
-    base corner, outside the body, and wall_geom took that for a face contact (xfail above).  Its
-    impacts took 98 % of a sliding block's energy (:251, which then looped at zero speed), left
-    blocks "leaning" tens of metres from the wall, and spun the :430 block over the edge.  Until E
-    is measured against the base, the kernel refuses such an impact: the run ends
-    failed:face-contact at the first one, with no wall impact counted, and at that instant E is
-    outside the body (independent geometry), so the refused contact did not exist."""
+def test_short_wall_contacts_of_the_fuzz_cells_are_on_the_body(case):
+    """contact:2027:251 and :430: the short wall's edge E met the wall-side face's line past the
+    base corner, outside the body, and wall_geom took that for a face contact: its impacts took
+    98 % of a sliding block's energy (:251, which then looped at zero speed), left blocks "leaning"
+    tens of metres from the wall, and spun the :430 block over the edge (fc6a5fc then refused them
+    as failed:face-contact).  Measured against the base, :251's block, sliding tilted away from
+    the wall with its base corner above the wall's top, meets E with its bottom face (one elastic
+    wall impact, e_w = 1) and tips over; the :430 block, thrown onto its far side, never reaches
+    the wall and overturns away from it, both mirror images alike.  Checks: a definite status, E
+    on the body's outline at every wall impact (independent geometry), the mirror image's run,
+    and no transition raises the mechanical energy."""
     if case == "251":
         c = CASE251
         body, wall = c["body"], c["wall"]
@@ -421,12 +426,22 @@ def test_a_wall_impact_of_the_edge_past_the_base_corner_is_refused(case):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             run = simulate(body, pulse, wall=wall, friction=c["friction"], rtol=3.18e-08)
+        assert run.status == "overturn:mode2" and run.metrics["wall_impacts"] == 1
     else:
         side = 1 if case == "430+" else -1
         run = _run430(10.435743165206445, side)
         c = CASE430
         body = c["body"]
         wall = Wall(c["gap"], side=side, height=c["height"], restitution=c["restitution"])
-    assert run.status == "failed:face-contact"
-    assert run.metrics["wall_impacts"] == 0
-    assert _edge_outside_body(run.history.iloc[-1], body, wall) > 0.01
+        mirror = _run430(10.435743165206445, -side)
+        assert run.status == mirror.status == "overturn:mode2"
+        assert run.metrics["max_rotation"] == pytest.approx(mirror.metrics["max_rotation"], rel=1e-12)
+        assert run.metrics["wall_impacts"] == 0
+    h = run.history
+    for t in run.events.loc[run.events["event"] == "wall-impact", "t"]:
+        for _i, row in h[h["t"] == t].iterrows():
+            assert _edge_outside_body(row, body, wall) <= 1e-9
+    # at one instant (a transition) the energy never rises
+    *_, energy = _cm(h, body)
+    same = np.nonzero(h["t"].to_numpy()[1:] == h["t"].to_numpy()[:-1])[0]
+    assert (energy[same + 1] <= energy[same] * (1 + 1e-12)).all()

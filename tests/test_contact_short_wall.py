@@ -11,8 +11,10 @@ Oracles:
 - the mode solve keeps a closed edge contact closed: the second derivative of E's distance to the
   face, by finite differences of an independent geometry along the solved motion, is 0 (the
   velocity-product term of the turning normal is in the wall row);
-- at every wall impact E lies on the face (or the wall-side base corner on the wall) to 1e-9 m,
-  and at no stored state is E inside the body by more than 1e-9 m;
+- ``wall_geom``'s gap, contact point and normal are E's distance, nearest point and direction to
+  the body's outline (random states, independent geometry), the face's line ending at the corners;
+- at every wall impact E lies on the body's outline (or the wall-side base corner on the wall) to
+  1e-9 m, and at no stored state is E inside the body by more than 1e-9 m;
 - no transition raises the mechanical energy;
 - an asymmetric RigidBody runs with a short wall, friction and flight; a symmetric RigidBody
   equals its block.
@@ -129,6 +131,25 @@ def _edge(par, y):
     return w * a - bw, depth
 
 
+def _edge_to_body(par, y):
+    """E's distance to the body for state rows y (outside > 0, inside minus its depth), from the
+    body's outline alone: E on the face's line past a corner is not on the body."""
+    y = np.atleast_2d(y)
+    w = par[L.P_WALL_SIDE]
+    b1, b2, h = par[L.C_B1], par[L.C_B2], par[L.C_H1]
+    ht = par[L.C_HT2] if w > 0 else par[L.C_HT1]
+    th = y[:, 0]
+    gx = y[:, 2] + h * np.sin(th)
+    gy = y[:, 4] + h * np.cos(th)
+    ex = w * ((b2 if w > 0 else b1) + par[L.C_GAP]) - gx
+    ey = par[C.C_H_WALL] - gy
+    a = ex * np.cos(th) - ey * np.sin(th)
+    c = ex * np.sin(th) + ey * np.cos(th)
+    out = np.hypot(np.maximum.reduce([a - b2, -b1 - a, 0 * a]), np.maximum.reduce([c - ht, -h - c, 0 * c]))
+    depth = np.minimum.reduce([a + b1, b2 - a, c + h, ht - c])
+    return np.where(out > 0.0, out, -depth)
+
+
 def _near_gap(par, y):
     w = par[L.P_WALL_SIDE]
     bw = par[L.C_B2] if w > 0 else par[L.C_B1]
@@ -207,6 +228,72 @@ def _second(out):
     return np.array([out[1], 0.0, out[3], 0.0, out[5], 0.0])
 
 
+# ------------------------------------------------------------------ the wall contact's geometry
+def _nearest_on_body(a, c, b_near, b_far, h, ht):
+    """(distance, nearest point) of the body-frame point (a, c) (a toward the wall side) to the
+    rectangle [-b_far, b_near] x [-h, ht]: outside, the Euclidean distance and the nearest point
+    of the outline; inside, minus the depth below the nearest of the wall-side face, the top and
+    the bottom (the far face is never the wall's)."""
+    pa, pc = min(max(a, -b_far), b_near), min(max(c, -h), ht)
+    d = math.hypot(a - pa, c - pc)
+    if d > 0.0:
+        return d, pa, pc
+    depths = {(b_near, c): b_near - a, (a, -h): c + h, (a, ht): ht - c}
+    (pa, pc), depth = min(depths.items(), key=lambda kv: kv[1])
+    return -depth, pa, pc
+
+
+@pytest.mark.parametrize("body", [BLOCK, ASYM], ids=["block", "asymmetric"])
+@pytest.mark.parametrize("side", [1, -1])
+def test_wall_geometry_is_the_distance_of_the_edge_to_the_body(body, side):
+    """``wall_geom`` on random states against independent geometry: with the short wall's edge E
+    anywhere on the wall-side half of the body's frame, the gap is E's distance to the body
+    outside it (the wall-side face, the top, the bottom, either wall-side corner) and minus its
+    depth inside; the contact point is the body's nearest point and the normal points from E to
+    it.  Only with the top corner past the face and below E is the contact the corner against the
+    wall's face (the horizontal clear distance).  Before, the face's line continued past the base
+    corner, so E below the base read gap 0 from the face (contact:2027:251)."""
+    wall = Wall(side=side, **LOW)
+    par = contact_par(body, Friction(0.5, lift_off="flight"), wall)
+    w = side
+    b_near = par[L.C_B2] if w > 0 else par[L.C_B1]
+    b_far = par[L.C_B1] if w > 0 else par[L.C_B2]
+    h = par[L.C_H1]
+    ht = par[L.C_HT2] if w > 0 else par[L.C_HT1]
+    ex, ey = w * (b_near + par[L.C_GAP]), par[C.C_H_WALL]
+    rng = np.random.default_rng(20261207)
+    kinds = {}
+    for _ in range(3000):
+        th = rng.uniform(-1.6, 1.6)
+        a = rng.uniform(0.0, b_near + 0.4)            # E's place, toward the wall side
+        c = rng.uniform(-h - 0.4, ht + 0.4)
+        cs, sn = math.cos(th), math.sin(th)
+        # E = G + w a (cos, -sin) + c (sin, cos): the CM from E
+        gx = ex - w * a * cs - c * sn
+        gy = ey + w * a * sn - c * cs
+        y = np.array([th, 0.0, gx - h * sn, 0.0, gy - h * cs, 0.0])
+        gap, rx, ry, nx, ny, _tx, _ty, kind = C.wall_geom(y, par)
+        kinds[kind] = kinds.get(kind, 0) + 1
+        # the wall-side top corner in the world
+        kx = gx + w * b_near * cs + ht * sn
+        ky = gy - w * b_near * sn + ht * cs
+        if a > b_near and c > ht and ky <= ey:
+            assert kind == C.WG_CORNER, (th, a, c, kind)
+            assert gap == pytest.approx(b_near + par[L.C_GAP] - w * kx, abs=1e-12)
+            continue
+        dist, pa, pc = _nearest_on_body(a, c, b_near, b_far, h, ht)
+        assert gap == pytest.approx(dist, abs=1e-12), (th, a, c, kind)
+        # the nearest point in the world, relative to the CM
+        px, py = w * pa * cs + pc * sn, -w * pa * sn + pc * cs
+        assert (rx, ry) == pytest.approx((px, py), abs=1e-12), (th, a, c, kind)
+        if dist > 1e-6:
+            # E's offset from the CM is (ex - gx, ey - gy); n from E toward the body
+            assert (nx, ny) == pytest.approx(((px - (ex - gx)) / dist, (py - (ey - gy)) / dist),
+                                             abs=1e-9), (th, a, c, kind)
+    assert set(kinds) == {C.WG_CORNER, C.WG_EDGE, C.WG_VERTEX, C.WG_TOP, C.WG_BOTTOM, C.WG_BASE}, kinds
+    assert min(kinds.values()) > 20, kinds
+
+
 # ------------------------------------------------------------------ runs: contact and energy
 FRICTIONS = (Friction(0.5, lift_off="flight"), Friction(0.15, lift_off="flight"), STICKY)
 WALLS = (dict(LOW), dict(HIGH), dict(LOW, friction=0.3), dict(HIGH, friction=0.6, restitution=0.5))
@@ -240,8 +327,9 @@ def test_contact_condition_and_energy(body):
     for key, par, r in _runs(body):
         statuses.add(r["status"])
         y, t = r["y"], r["t"]
-        dist, depth = _edge(par, y)
+        _line, depth = _edge(par, y)
         assert depth.max() <= TOL_GEOM, (key, depth.max())
+        dist = _edge_to_body(par, y)
         near = _near_gap(par, y)
         wall_t = r["log"][r["log"][:, L.LOG_KIND] == L.EV_WALL_IMPACT, L.LOG_T]
         for ti in wall_t:
@@ -249,9 +337,9 @@ def test_contact_condition_and_energy(body):
             if len(rows) == 0:
                 continue
             i = rows[0]
-            on_face = abs(dist[i]) <= TOL_GEOM
-            assert on_face or abs(near[i]) <= TOL_GEOM, (key, ti, dist[i], near[i])
-            n_edge += on_face and abs(near[i]) > TOL_GEOM
+            on_body = abs(dist[i]) <= TOL_GEOM
+            assert on_body or abs(near[i]) <= TOL_GEOM, (key, ti, dist[i], near[i])
+            n_edge += on_body and abs(near[i]) > TOL_GEOM
         E = _mech(par, y, body.g)
         same = np.nonzero(t[1:] == t[:-1])[0]
         if len(same):
