@@ -1102,11 +1102,15 @@ def event(k, t, y, par, disc, hdr, smp):
         if wall_top(disc[D_CS2]):
             # top-corner ladder (top_ladder): the wall's force reaching 0
             return closed_wall_force(t, y, par, disc, hdr, smp), 0.0, True
-        if par[C_GAP] == 0.0 and (1 if s > 0 else 0) != near_index(par):
+        if par[C_GAP] == 0.0 and (1 if s > 0 else 0) != near_index(par) \
+                and (mode == MODE_ROCK or not short_wall(par)):
             # gap 0, rocking on the far corner: the wall-side face is
             # vertical, so the top corner reaches the wall with the base
             # corner below it, at theta = 0 (K_IMPACT: Hogan's impact), or
-            # after it (K_WALL_BASE)
+            # after it (K_WALL_BASE).  A short wall's edge, at the near
+            # corner's place at rest, is off the base turning about a fixed
+            # pivot; a pivot sliding toward the wall can carry the raised
+            # base over it (WG_BOTTOM)
             return np.inf, 0.0, True
         gap, vn, _vt = point_kin(2, y, par)
         if vn < 0.0:
@@ -1200,6 +1204,8 @@ def face_rest_margin(t, par, hdr, smp):
 @jit
 def static_margin(t, y, par, disc, hdr, smp):
     if disc[D_MODE] == MODE_WALL_REST:
+        if disc[D_SLIP_DIR] == JAM:
+            return wall_jam_margin(t, y, par, disc, hdr, smp)
         return wall_rest_margin(t, y, par, disc, hdr, smp)
     if disc[D_CS2] == CS_WALL_BASE:
         return face_rest_margin(t, par, hdr, smp)
@@ -2173,6 +2179,9 @@ def settle_on_wall(j, t, y, par, disc, hdr, smp, met, log, cnt):
         return RUNNING
     if tip_off_pivot(j, t, y, par, disc, hdr, smp, met, log, cnt):
         return RUNNING
+    if wall_rest_at_cone(j, t, y, par, disc, hdr, smp):
+        log_event(log, cnt, t, EV_WALL_REST, 0.0, 0.0, y[0], s)
+        return RUNNING
     return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
 
 
@@ -3059,6 +3068,107 @@ def top_ladder(j, t, y, par, disc, hdr, smp):
 
 
 @jit
+def wall_jam_values(t, y, par, disc, hdr, smp):
+    """At rest with the top corner (or a short wall's edge) on a
+    frictionless wall, pivot disc[D_PIVOT] sticking: (ok, N, N_w, c, v,
+    sigma) with N, N_w the sticking rest's normal forces, c = mu_s N - |F|
+    its friction margin, and v = min(N, N_w, sigma a_t) of the better slip
+    direction sigma with the wall contact held (v > 0: that ladder is
+    consistent).  Forces per unit mass."""
+    te = np.inf if t >= excitation_end(hdr) else t
+    acc = np.empty(3)
+    j = 1 if disc[D_PIVOT] > 0 else 0
+    bx, by, bw = free_acc(te, par, hdr, smp)
+    st0 = CS_STICK if j == 0 else CS_OPEN
+    st1 = CS_STICK if j == 1 else CS_OPEN
+    ok, N0, F0, N1, F1, N2, _F2 = solve_contacts(y, bx, by, bw, 0.0, par,
+                                                 st0, st1, CS_FREE, acc)
+    N = N1 if j == 1 else N0
+    F = F1 if j == 1 else F0
+    v = -np.inf
+    sigma = 0
+    for sig in (1, -1):
+        st = slip_state(sig)
+        oks, M0, _G0, M1, _G1, M2, _G2 = solve_contacts(
+            y, bx, by, bw, 0.0, par, st if j == 0 else CS_OPEN,
+            st if j == 1 else CS_OPEN, CS_FREE, acc)
+        _an, at = contact_acc(j, y, par, acc)
+        vs = min(M1 if j == 1 else M0, M2, sig * at)
+        if oks and vs > v:
+            v = vs
+            sigma = sig
+    return ok, N, N2, par[C_MU_S] * N - abs(F), v, sigma
+
+
+@jit
+def wall_rest_at_cone(j, t, y, par, disc, hdr, smp):
+    """Pivot j at rest with the top corner (or a short wall's edge) on a
+    frictionless wall, both normal forces pushing, whose stick exceeds the
+    friction cone: that slip with the wall contact held (the ladder from
+    rest) if one is consistent (near the cone's edge its acceleration is 0
+    to rounding, so ``top_ladder``'s strict test can miss it), else
+    jammed.  Jammed, no slip is consistent: the slip's normal force grows
+    with its acceleration (Painleve), so the slip toward the wall
+    decelerates while sticking exceeds the cone, and the other way needs a
+    pull (contact:2026:2, a block pressed at 6.9 g onto a short wall's
+    edge, mu_s = 1.47).  The rigid model has no motion there; the body
+    stays jammed (a rest with D_SLIP_DIR = JAM, as the rocking pivot's jam)
+    until the push lets the stick hold again or a slip becomes consistent
+    (``wall_jam_margin``, ``leave_wall_jam``).  The ground-only pick rocked
+    it back into the wall at zero speed, an impact and a rest at one
+    instant for ever.  Returns False (nothing set) off these conditions."""
+    if (not np.isfinite(par[C_MU_S]) or wall_frictional(par)
+            or wall_base(disc[D_CS2])):
+        return False
+    s = disc[D_PIVOT]
+    ok, N, N2, c, v, sig = wall_jam_values(t, y, par, disc, hdr, smp)
+    if not (ok and N > 0.0 and N2 > 0.0 and c < 0.0):
+        return False
+    if v < 0.0:
+        set_contacts(disc, CS_STICK if j == 0 else CS_OPEN,
+                     CS_STICK if j == 1 else CS_OPEN, CS_FREE)
+        disc[D_SLIP_DIR] = JAM
+    else:
+        st = slip_state(sig)
+        set_contacts(disc, st if j == 0 else CS_OPEN,
+                     st if j == 1 else CS_OPEN, CS_FREE)
+    disc[D_PIVOT] = s
+    return True
+
+
+@jit
+def wall_jam_margin(t, y, par, disc, hdr, smp):
+    """Static margin of the jam (``wall_rest_at_cone``): it holds while both
+    normal forces push, the stick exceeds the cone and no slip is
+    consistent."""
+    ok, N, N2, c, v, _sig = wall_jam_values(t, y, par, disc, hdr, smp)
+    if not ok:
+        return -1.0
+    return min(N, N2, -c, -v)
+
+
+@jit
+def leave_wall_jam(j, t, y, par, disc, hdr, smp, met, log, cnt):
+    """The jam's end: the sticking rest again if it holds, else the
+    consistent slip with the wall contact held (the ladder, from rest),
+    else the ground-only pick (a normal force reached 0)."""
+    s = disc[D_PIVOT]
+    ok, N, N2, c, v, sig = wall_jam_values(t, y, par, disc, hdr, smp)
+    if ok and N > 0.0 and N2 > 0.0:
+        if c >= 0.0:
+            disc[D_SLIP_DIR] = 0
+            return RUNNING
+        if v >= 0.0:
+            st = slip_state(sig)
+            set_contacts(disc, st if j == 0 else CS_OPEN,
+                         st if j == 1 else CS_OPEN, CS_FREE)
+            disc[D_PIVOT] = s
+            return RUNNING
+    log_event(log, cnt, t, EV_WALL_RELEASE, 0.0, 0.0, y[0], s)
+    return pick_single(j, t, y, par, disc, hdr, smp, met, log, cnt, False)
+
+
+@jit
 def wall_ladder(j, kw, t, y, par, disc, hdr, smp, tol):
     """Frictional wall (mu_w > 0): from rest, base corner j slipping on the
     ground in sigma and wall point kw (2 or K_NEAR) slipping along the wall
@@ -3119,6 +3229,11 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         if disc[D_MODE] == MODE_WALL_REST:
             s = disc[D_PIVOT]
             j = 1 if s > 0 else 0
+            if disc[D_SLIP_DIR] == JAM:
+                return leave_wall_jam(j, t, y, par, disc, hdr, smp, met, log,
+                                      cnt)
+            if wall_rest_at_cone(j, t, y, par, disc, hdr, smp):
+                return RUNNING
             log_event(log, cnt, t, EV_WALL_RELEASE, 0.0, 0.0, y[0], s)
             if tip_off_pivot(j, t, y, par, disc, hdr, smp, met, log, cnt):
                 return RUNNING

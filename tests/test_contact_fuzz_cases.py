@@ -445,3 +445,105 @@ def test_short_wall_contacts_of_the_fuzz_cells_are_on_the_body(case):
     *_, energy = _cm(h, body)
     same = np.nonzero(h["t"].to_numpy()[1:] == h["t"].to_numpy()[:-1])[0]
     assert (energy[same + 1] <= energy[same] * (1 + 1e-12)).all()
+
+
+CASE2026_2 = dict(
+    body=RigidBlock.rectangle(b=1.3491, h=3.27891, e=0.480148),
+    wall=dict(gap=0.0221141, height=3.8892476042771187, restitution=0.8019),
+    friction=Friction(1.46733, 1.46733, lift_off="flight"),
+    solver=Solver(rtol=4.99e-09), amplitude=27.370385237046282)
+
+
+def _run2026_2(frequency, side, t_eval=None):
+    c = CASE2026_2
+    pulse = Pulse(c["amplitude"], frequency, -side, "one-sine", amplitude_unit="g_tan_alpha",
+                  frequency_unit="omega_p/p")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return simulate(c["body"], pulse, wall=Wall(side=side, **c["wall"]), friction=c["friction"],
+                        solver=c["solver"], t_eval=t_eval)
+
+
+def _modes_at_rest(row, body, wall, mu, g=9.80665):
+    """Independent rigid-body solves for a block at rest on its wall-side base corner with a short
+    wall's edge E on its wall-side face (side +1), per unit mass, from the history row's state and
+    ground acceleration: the sticking rest's friction margin mu N - |F| and, for each slip
+    direction sigma of the pivot with E held, (N, N_w, sigma a_x of the pivot)."""
+    th, b, h = row["theta"], body.b, body.h
+    xg, yg = row["d"] + h * math.sin(th), row["z"] + h * math.cos(th)
+    rp = np.array([row["d"] + b * math.cos(th), row["z"] - b * math.sin(th)]) - (xg, yg)
+    rq = np.array([b + wall.gap, wall.height]) - (xg, yg)
+    n = np.array([-math.cos(th), math.sin(th)])          # into the body, normal to the face
+    iG = (b * b + h * h) / 3.0
+    bx, by = -row["a_g"], -g
+
+    def cross(r, f):
+        return r[0] * f[1] - r[1] * f[0]
+
+    # unknowns (a_Gx, a_Gy, alpha, N, N_w[, F]); the pivot's acceleration at rest is
+    # a_G + alpha (-r_y, r_x), E's gap rate n . a_Q
+    def solve(sigma):
+        A = np.zeros((6, 6))
+        rhs = np.zeros(6)
+        fx = (0.0, 0.0, 0.0, 0.0, 0.0, 1.0) if sigma == 0 else (0.0, 0.0, 0.0, -mu * sigma, 0.0, 0.0)
+        A[0] = (1, 0, 0, 0, -n[0], 0) - np.array(fx)
+        rhs[0] = bx
+        A[1] = (0, 1, 0, -1, -n[1], 0)
+        rhs[1] = by
+        mom_N = cross(rp, (0.0, 1.0)) + (cross(rp, (-mu * sigma, 0.0)) if sigma else 0.0)
+        A[2] = (0, 0, iG, -mom_N, -cross(rq, n), -cross(rp, (1.0, 0.0)) if sigma == 0 else 0.0)
+        A[3] = (0, 1, rp[0], 0, 0, 0)                                  # pivot stays on the ground
+        A[4] = (n[0], n[1], n[0] * -rq[1] + n[1] * rq[0], 0, 0, 0)    # E stays on the face
+        if sigma == 0:
+            A[5] = (1, 0, -rp[1], 0, 0, 0)                             # the pivot sticks
+        else:
+            A[5, 5] = 1.0                                              # F is -mu sigma N (above)
+        u = np.linalg.solve(A, rhs)
+        return u
+
+    stick = solve(0)
+    margin = mu * stick[3] - abs(stick[5])
+    slips = {}
+    for sigma in (1, -1):
+        u = solve(sigma)
+        slips[sigma] = (u[3], u[4], sigma * (u[0] - u[2] * rp[1]))
+    return margin, stick[3], stick[4], slips
+
+
+@pytest.mark.parametrize("frequency", (0.5959470192225405, 0.2140957765729407))
+def test_contact_2026_2_a_block_jammed_on_the_edge_stays_until_the_push_lets_go(frequency):
+    """contact:2026:2 (failed:step-budget, 2 cells): a block (b/h = 0.41) pressed by a one-sine of
+    27 g tan(alpha) (up to 11 g) onto a short wall's edge with mu_s = 1.47 rests on its wall-side
+    corner with the edge on its face.  When the push passes mu N the rest ends, and no motion of
+    the rigid model exists: sticking needs more than mu N, the pivot's slip toward the wall with
+    the edge held decelerates (its normal force grows with the slip's acceleration: Painleve), and
+    the slip away needs a pull.  The ground-only pick rocked the block back into the edge at zero
+    speed, 2e5 impacts at one instant.  Now the block stays jammed until the push lets it go, then
+    the second half of the pulse throws it over away from the wall.  Checks: definite and fast,
+    the mirror image's run, the jam's rows at rest and, by independent rigid-body solves at the
+    jam's rows, that no sticking, slipping or releasing mode was consistent there."""
+    c = CASE2026_2
+    body, mu = c["body"], c["friction"].mu_s
+    run = _run2026_2(frequency, 1)
+    mirror = _run2026_2(frequency, -1)
+    assert run.status == mirror.status == "overturn:mode1", (run.status, mirror.status)
+    assert run.metrics["max_rotation"] == pytest.approx(mirror.metrics["max_rotation"], rel=1e-9)
+    assert run.metrics["steps"] < 2000
+    ev = run.events
+    assert ev["t"].value_counts().max() < 40
+    # the jam: at rest on the edge (sampled every 10 ms), sticking needs more than mu N and
+    # neither slip is consistent, in the independent solves
+    h = _run2026_2(frequency, 1, t_eval=np.arange(0.0, 4.0, 0.01)).history
+    rest = h[h["contact"] == "wall-rest"]
+    wall = Wall(side=1, **c["wall"])
+    jammed = []
+    for _i, row in rest.iterrows():
+        assert row["theta_dot"] == 0.0 and row["d_dot"] == 0.0 and row["z_dot"] == 0.0
+        margin, N, Nw, slips = _modes_at_rest(row, body, wall, mu)
+        assert N > 0.0 and Nw > 0.0
+        if margin < -1e-6 * N:
+            jammed.append(row["t"])
+            for sigma, (Ns, Nws, acc) in slips.items():
+                assert min(Ns, Nws, acc) < 0.0, (row["t"], sigma, Ns, Nws, acc)
+    # it lasts while the push exceeds what friction holds: about 2.8 s of the pulse
+    assert len(jammed) > 100, len(jammed)
