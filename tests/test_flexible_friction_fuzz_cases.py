@@ -12,6 +12,17 @@
   undone, and no new test at this instant (the uplift event takes the body up once the margin is
   crossed over a step).  kernels/flexible_friction.py now applies it too (REST, or SLIDE on if
   the base moves).
+- ``flexible_friction:2027:331`` (failed:step-underflow, 2 cells): after a held lift-off the
+  base slip-rocks back (theta = -0.80 rad, past alpha) and the trajectory runs into the singular
+  point of the slip equations where A (the frictionless pivot's N) and D(sigma) = 1 + mu_k sigma
+  dN/dF vanish together (Genot & Brogliato; Champneys & Varkonyi's "dynamic jam").  N = A / D
+  stays finite (about 0.05 of the weight) while the accelerations grow as 1 / D, and the step
+  underflowed at t = 0.158196 s.  The lift-off event now also fires once A and D are both inside
+  the lift-off band (A <= N_LIFT W, D <= N_LIFT; elsewhere it is N, unchanged): the pivot is
+  unloaded there by the test the kernel already applied at that event (A <= N_LIFT W: lift-off,
+  else a tangential impact).  With lift_off "hold" the run goes on through held lift-offs,
+  reloads and tangential impacts, and overturns, as at rtol 1e-11, with mu = 1e6 and with the
+  stiff column.
 
 Oracles: the definite status; the mechanical energy of the history after the pulse (the fuzz
 invariant's formula, not the kernel's) never rises; the mirror run (sign -1) is the exact mirror
@@ -29,6 +40,10 @@ import numpy as np
 import pytest
 
 from fastrock import FlexibleBody, Friction, Pulse, Solver, simulate
+from fastrock.running.models import flexible_friction_par
+from fastrock.kernels import layout as L
+
+from test_flexible_friction import lagrangian_model
 
 _FUZZ = Path(__file__).resolve().parent.parent / "bench" / "fuzz.py"
 T_AFTER = 10.0
@@ -44,9 +59,9 @@ def _fuzz():
     return sys.modules["fastrock_bench_fuzz"]
 
 
-def _scene(alpha, p, wr, im, mu_s, mu_k, rtol, pulse):
-    return dict(body=FlexibleBody(alpha=alpha, p=p, omega_n_over_p=wr, zeta=0.0, impact="full-contact",
-                                  rotary_inertia_ratio=im, base_cm_height=0.0),
+def _scene(alpha, p, wr, im, mu_s, mu_k, rtol, pulse, zeta=0.0, hb=0.0):
+    return dict(body=FlexibleBody(alpha=alpha, p=p, omega_n_over_p=wr, zeta=zeta, impact="full-contact",
+                                  rotary_inertia_ratio=im, base_cm_height=hb),
                 friction=Friction(mu_s, mu_k, slide_tolerance=1e-3, lift_off="hold"),
                 rtol=rtol, pulse=pulse)
 
@@ -62,7 +77,11 @@ SCENES = {
                 1.1725311163860213, 1.1725311163860213, 5.606017244434036e-06, "one-sine"),
     451: _scene(0.4242912211949814, 0.7434062762740662, 150.73686671746094, 0.028050073472934423,
                 0.4765424940320505, 0.38461082351804643, 8.586551226230831e-06, "one-sine"),
+    331: _scene(0.38217890215604094, 5.571057277950662, 271.1162987199271, 0.0,
+                1.997076324829961, 1.8906091428717744, 3.4383458805382095e-07, "one-sine",
+                zeta=0.08535110654221985, hb=0.07347813724623997),
 }
+JAM_CELL = (331, 27.340342529040864, 17.99140701639385)
 
 # (batch, amplitude a_p / (g tan alpha), frequency omega_p / p): the failing cells (each failed
 # with both signs)
@@ -161,3 +180,79 @@ def test_former_transition_loops_are_mirror_symmetric(batch, amplitude, frequenc
     for c in ("theta", "u", "d"):
         a, b = hp[c].to_numpy(), hm[c].to_numpy()
         assert np.allclose(a, -b, rtol=1e-9, atol=1e-12 * max(1.0, np.abs(a).max())), c
+
+
+_LAGRANGIAN = []
+
+
+def _lagrangian():
+    if not _LAGRANGIAN:
+        _LAGRANGIAN.append(lagrangian_model())
+    return _LAGRANGIAN[0]
+
+
+def _sympy_margins(body, friction, y, s, ag):
+    """(A, D(sigma), N of the slip toward sigma = sgn d') per unit mass at state y on pivot s, from
+    the sympy Lagrangian of tests/test_flexible_friction.py (not the kernel's solves)."""
+    Mf, rf, Nf, *_ = _lagrangian()
+    par = flexible_friction_par(body, friction)
+    prm = (s, body.B, body.H, body.base_cm_height, par[L.F_MB], par[L.F_IB], par[L.F_IM], body.omega_n,
+           body.zeta, body.g, ag)
+    vel = (y[1], y[3], y[5])
+
+    def N_of(F):
+        M = np.array(Mf(*prm, F, y[0], y[2], *vel, 0, 0, 0), float)
+        r = np.array(rf(*prm, F, y[0], y[2], *vel, 0, 0, 0), float).ravel()
+        return float(Nf(*prm, F, y[0], y[2], *vel, *np.linalg.solve(M, r)))
+
+    A = N_of(0.0)
+    nF = N_of(1.0) - A
+    sigma = 1.0 if y[5] > 0 else -1.0
+    D = 1.0 + friction.mu_k * sigma * nF
+    return A, D, A / D
+
+
+@pytest.mark.slow
+def test_the_dynamic_jam_of_2027_331_lifts_off_and_the_run_ends_definite():
+    batch, a, f = JAM_CELL
+    sc = SCENES[batch]
+    body, friction = sc["body"], sc["friction"]
+    run, t_free = _run(batch, a, f, 1)
+    assert run.status == "overturn:mode2", run.status
+    ev, h = run.events, run.history
+    # the first held lift-off after the slip-rocking phase that ran into the jam (t > 0.151 s)
+    lo = ev[(ev["event"] == "lift-off-held") & (ev["t"] > 0.151)].iloc[0]
+    i = int(np.flatnonzero(h["t"].to_numpy() == lo["t"])[0])
+    W = (1.0 + body.base_mass(sliding=True)) * body.g
+
+    def margins(j):
+        row = h.iloc[j]
+        assert row["contact"] == "slide-rock" and row["a_g"] == 0.0
+        y = row[["u", "u_dot", "theta", "theta_dot", "d", "d_dot"]].to_numpy(float)
+        return _sympy_margins(body, friction, y, int(row["pivot"]), 0.0)
+
+    # the jam: at the lift-off A and D are both nearly 0 (at the lift-off band) ...
+    A, D, N = margins(i)
+    assert abs(A) <= 1.01e-6 * W, A / W
+    assert 0.0 < D <= 2e-6, D
+    # ... while on the way there N = A / D stayed of the order of 5 % of the weight (an ordinary
+    # lift-off has N -> 0 with D of order 1): the last rows with D > 1e-4
+    j = i - 1
+    while margins(j)[1] <= 1e-4:
+        j -= 1
+    A, D, N = margins(j)
+    assert A > 0.0 and 0.01 * W < N < 0.2 * W, (A / W, D, N / W)
+    # energy: no rise after the pulse (held lift-offs are frictionless, tangential impacts dissipate)
+    fz = _fuzz()
+    E = fz.energy(h, body, None, "flexible_friction")
+    m = h["t"].to_numpy() > t_free
+    scale = max(float(np.max(np.abs(E))), body.g ** 2 / body.p ** 2 * (1 - np.cos(body.alpha)))
+    rise = float(np.max(np.diff(E[m]))) / scale
+    assert rise <= fz.ENERGY_TOL + fz.ENERGY_TOL_RTOL * sc["rtol"], rise
+    # converged: the same outcome at rtol 1e-11, and the mirror run is the mirror image
+    tight, _ = _run(batch, a, f, 1, rtol=TIGHT_RTOL)
+    assert tight.status == run.status
+    mirror, _ = _run(batch, a, f, -1)
+    assert mirror.status == run.status and len(mirror.events) == len(run.events)
+    assert mirror.metrics["max_rotation"] == pytest.approx(run.metrics["max_rotation"], rel=1e-9)
+
