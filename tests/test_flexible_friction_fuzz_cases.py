@@ -256,3 +256,31 @@ def test_the_dynamic_jam_of_2027_331_lifts_off_and_the_run_ends_definite():
     assert mirror.status == run.status and len(mirror.events) == len(run.events)
     assert mirror.metrics["max_rotation"] == pytest.approx(run.metrics["max_rotation"], rel=1e-9)
 
+
+# ---------------------------------------------------------------- :594, the stable-step check
+def test_the_stable_step_check_stays_within_its_budget():
+    """``flexible_friction:2027:594`` (hang): a fixed-step run (dt = 7.5e-5 s from omega_n) ends
+    failed:unstable-step in about a second: the body falls over and its held lift-offs and slips
+    near D = 0 are far stiffer than the column (|lambda| up to 1e5..1e8 1/s).  simulate() then
+    looks for a stable step by running the cell again.  The second try (9.4e-6 s) diverged with a
+    local error so large that the h^5 estimate suggested 1.24e-12 s, which ran with a budget of
+    1e12 steps (the hang).  Stand-in run with that pattern: no candidate needs more than
+    CHECK_BUDGET_FACTOR times the run's budget, and the check ends "none found" (the warning then
+    says no fixed step down to that one ended the run: use the adaptive solver)."""
+    from fastrock.running.outcomes import CHECK_BUDGET_FACTOR, checked_stable_step
+    opt = np.zeros(L.N_OPT)
+    opt[L.O_T0], opt[L.O_T_END], opt[L.O_MAX_STEPS], opt[L.O_DT_FIXED] = 0.0, 11.02, 2e6, 7.53e-5
+    tried = []
+
+    def run(o):
+        tried.append((o[L.O_DT_FIXED], o[L.O_MAX_STEPS]))
+        met = np.zeros(L.N_MET)
+        met[L.M_DT_STABLE] = 9.45e-6 if len(tried) == 1 else 1.24e-12
+        return L.FAIL_UNSTABLE, met
+
+    step, how, budget = checked_stable_step(run, opt, 7.53e-5, 1.896e-5)
+    floor = 11.02 / (CHECK_BUDGET_FACTOR * 2e6)
+    assert step is None and budget is None and how == pytest.approx(floor, rel=1e-2)
+    assert [t[0] for t in tried][:2] == [1.89e-5, 9.44e-6]
+    assert len(tried) == 3 and tried[-1][0] >= 0.99 * floor
+    assert max(t[1] for t in tried) <= 1.06 * CHECK_BUDGET_FACTOR * 2e6 + 1000
