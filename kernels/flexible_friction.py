@@ -363,16 +363,19 @@ def event(k, t, y, par, disc, hdr, smp):
             # jam") N stays bounded and never reaches 0, while the
             # accelerations grow as 1 / D and the step underflows
             # (failed:step-underflow, fuzz flexible_friction:2027:331).  The
-            # event also fires once both are inside the lift-off band, A <=
-            # N_LIFT times the weight and D <= N_LIFT (D = 1 without
-            # friction): there ``transition`` sees A <= N_LIFT W, so the
+            # event also fires once both are inside the lift-off band, |A|
+            # <= N_LIFT times the weight and |D| <= N_LIFT (D = 1 without
+            # friction; not A < 0 and D < 0 alone, where the slip with
+            # N > 0 is consistent and goes on, as it did before): there
+            # ``transition`` sees A <= N_LIFT W, so the
             # pivot lifts off (the continuation the kernel takes wherever
             # both lift-off and a slip with A < 0, D < 0 are consistent,
             # ``pick_rocking``).  Outside that band the event is N, as
             # before (the same value, so the same roots).
             A, nF = normal_margins(t, y, s, par, hdr, smp)
             D = 1.0 + par[F_MU_K] * sig * nF
-            jam = max(A - N_LIFT * (1.0 + par[F_MB]) * par[F_G], D - N_LIFT)
+            jam = max(abs(A) - N_LIFT * (1.0 + par[F_MB]) * par[F_G],
+                      abs(D) - N_LIFT)
             if jam > 0.0:
                 return N, 0.0, True
             return min(N, jam), 0.0, True

@@ -257,6 +257,45 @@ def test_the_dynamic_jam_of_2027_331_lifts_off_and_the_run_ends_definite():
     assert mirror.metrics["max_rotation"] == pytest.approx(run.metrics["max_rotation"], rel=1e-9)
 
 
+
+@pytest.mark.slow
+@pytest.mark.parametrize("amplitude,frequency,events", [(20.791763877045042, 16.55974819618862, 86),
+                                                        (13.601597382213386, 17.99140701639385, 68)])
+def test_painleve_slip_with_a_and_d_negative_is_not_taken_for_the_jam(amplitude, frequency, events):
+    """Two other cells of :331.  A slide lifts a corner into a slip with A = -1.56 m/s^2 and
+    D = -0.14, where N = A / D > 0 (Painleve's indeterminate case: the slip is consistent and
+    the kernel keeps it).  A first version of the jam rule fired on A <= band and D <= band,
+    lifted off there at once, and looped uplift / lift-off at one instant
+    (failed:transition-loop, 8 cells of the batch replay).  The rule needs |A| and |D| both in
+    the band.  These runs are the ones of the kernel before the jam rule, event for event."""
+    run, _ = _run(331, amplitude, frequency, 1)
+    assert run.status == "safe:rest", run.status
+    assert len(run.events) == events
+
+
+def test_the_lift_off_event_is_n_outside_the_jam():
+    """Random slip states: wherever |A| or |D(sigma)| is outside the lift-off band, the lift-off
+    event of a slip is N itself (same value as before the jam rule, so the same roots), in
+    particular in Painleve's indeterminate region A < 0, D < 0."""
+    from fastrock.kernels import flexible_friction as K
+    from test_flexible_friction_painleve import _random_state
+    rng = np.random.default_rng(331)
+    both_negative = 0
+    for _ in range(400):
+        b, fr, par, s, ag, hdr, smp, y = _random_state(rng)
+        y[5] = rng.normal()
+        sig = 1 if y[5] > 0 else -1
+        disc = np.zeros(L.N_DISC, np.int64)
+        K.set_mode(disc, L.MODE_SLIDE_ROCK, s, sig)
+        A, nF = K.normal_margins(1.0, y, s, par, hdr, smp)
+        D = 1.0 + fr.mu_k * sig * nF
+        _u, _t, _d, N = K.slip_rock(1.0, y, s, sig, par, hdr, smp)
+        g, _gd, term = K.event(K.R_LIFT_OFF, 1.0, y, par, disc, hdr, smp)
+        assert term and g == N
+        both_negative += A < 0 and D < 0
+    assert both_negative > 5
+
+
 # ---------------------------------------------------------------- :594, the stable-step check
 def test_the_stable_step_check_stays_within_its_budget():
     """``flexible_friction:2027:594`` (hang): a fixed-step run (dt = 7.5e-5 s from omega_n) ends
