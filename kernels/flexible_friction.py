@@ -40,11 +40,12 @@ from .flexible import (F_ALPHA, F_B, F_G, F_H, F_HB, F_MB, F_THETA_OVER, F_WN,
                        F_ZETA, base_inertia, free_column_bound, never_uplifts_again,
                        positions, track_u, uplift_margin)
 from .friction import initial_contact, track_slide
-from .hybrid import (book_time, check_energy, final_status, integrate_hybrid,
-                     log_event, sweep_rows)
+from .hybrid import (C_NLOG, book_time, check_energy, final_status,
+                     integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_AUX, D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_IMPACT, EV_LIFT_OFF_HELD, EV_RELOAD, EV_REST, EV_SLIP,
-                     EV_STICK, EV_UPLIFT, FAIL_INCONSISTENT, FLIGHT, MODE_REST,
+                     EV_STICK, EV_UPLIFT, FAIL_INCONSISTENT, FLIGHT, LOG_KIND,
+                     LOG_T, MODE_REST,
                      MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK, M_IMPACTS,
                      M_N_LIFT_OFF, M_N_STICK_SLIP, M_T_LAST_IMPACT,
                      M_T_SLIP_START, M_T_UPLIFT, N_DISC, O_EARLY_EXIT,
@@ -355,6 +356,29 @@ def event(k, t, y, par, disc, hdr, smp):
             # unloaded: contact returns; the band between N_LIFT and
             # N_RELOAD keeps lift-off and reload from ping-ponging
             return N_RELOAD * (1.0 + par[F_MB]) * par[F_G] - N, 0.0, True
+        if k == R_LIFT_OFF:
+            # N = A / D(sigma) reaches 0 where A does while D > 0.  Where A
+            # and D vanish together (the singular point of the slip
+            # equations: Genot & Brogliato; Champneys & Varkonyi's "dynamic
+            # jam") N stays bounded and never reaches 0, while the
+            # accelerations grow as 1 / D and the step underflows
+            # (failed:step-underflow, fuzz flexible_friction:2027:331).  The
+            # event also fires once both are inside the lift-off band, |A|
+            # <= N_LIFT times the weight and |D| <= N_LIFT (D = 1 without
+            # friction; not A < 0 and D < 0 alone, where the slip with
+            # N > 0 is consistent and goes on, as it did before): there
+            # ``transition`` sees A <= N_LIFT W, so the
+            # pivot lifts off (the continuation the kernel takes wherever
+            # both lift-off and a slip with A < 0, D < 0 are consistent,
+            # ``pick_rocking``).  Outside that band the event is N, as
+            # before (the same value, so the same roots).
+            A, nF = normal_margins(t, y, s, par, hdr, smp)
+            D = 1.0 + par[F_MU_K] * sig * nF
+            jam = max(abs(A) - N_LIFT * (1.0 + par[F_MB]) * par[F_G],
+                      abs(D) - N_LIFT)
+            if jam > 0.0:
+                return N, 0.0, True
+            return min(N, jam), 0.0, True
     if k == R_LIFT_OFF:
         return N, 0.0, True
     if k == R_PEAK:
@@ -682,6 +706,37 @@ def impact(t, y, par, disc, hdr, smp, met, log, cnt, rest_below=0.0):
 
 
 @jit
+def never_left(t, y, disc, met, log, cnt):
+    """An impact with theta'- = 0 exactly: the rocking phase ended where it
+    began, so the body never left the ground (kernels/flexible.py's rule of
+    the same name).  The uplift was decided at a zero of the uplift margin
+    that the margin touches and leaves upward (u at its extremum, the
+    margin's minimum at the rounding level): there the margin reads <= 0
+    while the rocking equation's s theta'' turns the body back within the
+    first step.  Handing this "impact" to the impact map and its initiation
+    test repeats the same uplift and landing at one instant for ever
+    (failed:transition-loop, fuzz flexible_friction:2027:74, :108, :240,
+    :261, :451).  Full contact instead, the uplift undone (its log entry and
+    first-uplift time if made at this instant) and no initiation test here:
+    REST (or SLIDE on toward sgn d' if the base moves), whose own events take
+    the body up or into a slip as soon as the margins are crossed over a
+    step.  Nothing changes in the state but theta = 0, which was within the
+    root tolerance: no energy is added or removed."""
+    y[2] = 0.0
+    y[3] = 0.0
+    if y[5] != 0.0:
+        set_mode(disc, MODE_SLIDE, 1, 1 if y[5] > 0.0 else -1)
+    else:
+        set_mode(disc, MODE_REST, 1, 0)
+    if met[M_T_UPLIFT] == t:
+        met[M_T_UPLIFT] = np.nan
+    i = cnt[C_NLOG] - 1
+    if i >= 0 and log[i, LOG_KIND] == EV_UPLIFT and log[i, LOG_T] == t:
+        cnt[C_NLOG] = i
+    return RUNNING
+
+
+@jit
 def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
     mode = disc[D_MODE]
     s = disc[D_PIVOT]
@@ -749,6 +804,8 @@ def transition(k, t, y, par, disc, hdr, smp, opt, met, log, cnt):
         return stick(t, y, par, disc, hdr, smp, met, log, cnt)
     if k == R_OVERTURN:
         return overturned(t, y[2], y[3], s, met, log, cnt)
+    if y[3] == 0.0:
+        return never_left(t, y, disc, met, log, cnt)
     chatter = (abs(y[3]) < opt[O_EPS_OMEGA]
                or t - met[M_T_LAST_IMPACT] < opt[O_EPS_T])
     return impact(t, y, par, disc, hdr, smp, met, log, cnt,

@@ -58,20 +58,32 @@ def _three_digits_down(x):
     return float(f"{math.floor(x / scale) * scale:.3g}")
 
 
+#: the stable-step check runs no candidate step that needs more than this many times the run's own
+#: step budget (``checked_stable_step``)
+CHECK_BUDGET_FACTOR = 8
+
+
 def checked_stable_step(run, opt, dt, suggested, tries=8):
     """A fixed step at which a run that diverged at ``dt`` ends definite, found by running it again:
     from the kernel's suggestion (the step that brings the diverging step's local error within the
     limit), then halving while the run still diverges, at most ``tries`` runs.  A step that needs
     more fixed steps than the run's budget gets the budget a user would give it (as the front end's
-    error for such a step names it).  ``run(opt)`` returns (status code, metrics).  Returns (dt,
-    status name, the budget or None), or (None, the smallest dt tried, None) if none did."""
+    error for such a step names it), up to ``CHECK_BUDGET_FACTOR`` times the run's budget: the
+    smallest step the check runs is span / (CHECK_BUDGET_FACTOR max_steps).  The kernels' suggestion
+    assumes the error of a diverging step grows as h^5; far outside the stability region it grows
+    much faster and the suggestion can be absurdly small (1.24e-12 s after 9.4e-6 s diverged in fuzz
+    flexible_friction:2027:594, whose check then ran with 1e12 steps: the fuzz's "hang"), so it is
+    clamped there.  ``run(opt)`` returns (status code, metrics).  Returns (dt, status name, the
+    budget or None), or (None, the smallest dt tried, None) if none did."""
     import math
 
     from fastrock._validate import MAX_STEPS
     step = suggested if math.isfinite(suggested) and 0.0 < suggested < dt else 0.5 * dt
     span = opt[L.O_T_END] - opt[L.O_T0]
+    floor = span / (CHECK_BUDGET_FACTOR * opt[L.O_MAX_STEPS])
     for _ in range(tries):
-        step = _three_digits_down(step)
+        at_floor = step <= floor
+        step = _three_digits_down(max(step, floor))
         o = opt.copy()
         o[L.O_DT_FIXED] = step
         budget = None
@@ -83,6 +95,8 @@ def checked_stable_step(run, opt, dt, suggested, tries=8):
             if outcome_of(code) == "failed":
                 return None, step, None     # another limit: no step to name
             return step, status_of(code), budget
+        if at_floor:
+            break                           # the smallest step the check affords diverged too
         nxt = met[L.M_DT_STABLE]
         step = min(nxt if math.isfinite(nxt) and nxt > 0.0 else step, 0.5 * step)
     return None, step, None
