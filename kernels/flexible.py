@@ -51,10 +51,10 @@ import numpy as np
 
 from .config import jit, jit_parallel
 from .excitation import excitation_end, ground, ground_rates
-from .hybrid import (C_NLOG, book_time, check_energy, final_status,
+from .hybrid import (undo_uplift, book_time, check_energy, final_status,
                      init_metrics, integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_CONTACT, EV_FLIGHT, EV_IMPACT,
-                     EV_UPLIFT, FLIGHT, LOG_KIND, LOG_T, MODE_REST, MODE_ROCK,
+                     EV_UPLIFT, FLIGHT, MODE_REST, MODE_ROCK,
                      M_ENERGY_GAINS,
                      M_IMPACTS, M_MAX_THETA_NEG, M_MAX_THETA_POS, M_MAX_U,
                      M_MIN_U, M_T_LAST_IMPACT, M_T_UPLIFT, N_DISC,
@@ -261,11 +261,7 @@ def never_left(t, y, disc, met, log, cnt):
     step."""
     disc[D_MODE] = MODE_REST
     y[2] = 0.0
-    if met[M_T_UPLIFT] == t:
-        met[M_T_UPLIFT] = np.nan
-    i = cnt[C_NLOG] - 1
-    if i >= 0 and log[i, LOG_KIND] == EV_UPLIFT and log[i, LOG_T] == t:
-        cnt[C_NLOG] = i
+    undo_uplift(t, met, log, cnt)
     return RUNNING
 
 

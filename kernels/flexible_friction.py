@@ -40,12 +40,12 @@ from .flexible import (F_ALPHA, F_B, F_G, F_H, F_HB, F_MB, F_THETA_OVER, F_WN,
                        F_ZETA, base_inertia, free_column_bound, never_uplifts_again,
                        positions, track_u, uplift_margin)
 from .friction import initial_contact, track_slide
-from .hybrid import (C_NLOG, book_time, check_energy, final_status,
+from .hybrid import (undo_uplift, book_time, check_energy, final_status,
                      integrate_hybrid, log_event, sweep_rows)
 from .layout import (D_AUX, D_MODE, D_PIVOT, D_SLIP_DIR, D_STATIC, EV_FLIGHT,
                      EV_IMPACT, EV_LIFT_OFF_HELD, EV_RELOAD, EV_REST, EV_SLIP,
-                     EV_STICK, EV_UPLIFT, FAIL_INCONSISTENT, FLIGHT, LOG_KIND,
-                     LOG_T, MODE_REST,
+                     EV_STICK, EV_UPLIFT, FAIL_INCONSISTENT, FLIGHT,
+                     MODE_REST,
                      MODE_ROCK, MODE_SLIDE, MODE_SLIDE_ROCK, M_IMPACTS,
                      M_N_LIFT_OFF, M_N_STICK_SLIP, M_T_LAST_IMPACT,
                      M_T_SLIP_START, M_T_UPLIFT, N_DISC, O_EARLY_EXIT,
@@ -728,11 +728,7 @@ def never_left(t, y, disc, met, log, cnt):
         set_mode(disc, MODE_SLIDE, 1, 1 if y[5] > 0.0 else -1)
     else:
         set_mode(disc, MODE_REST, 1, 0)
-    if met[M_T_UPLIFT] == t:
-        met[M_T_UPLIFT] = np.nan
-    i = cnt[C_NLOG] - 1
-    if i >= 0 and log[i, LOG_KIND] == EV_UPLIFT and log[i, LOG_T] == t:
-        cnt[C_NLOG] = i
+    undo_uplift(t, met, log, cnt)
     return RUNNING
 
 

@@ -39,7 +39,8 @@ from .layout import (D_MODE, D_SLIP_DIR, MODE_REST, MODE_ROCK, MODE_SLIDE,
                      M_T_LAST_IMPACT, M_T_OVER, M_T_PASS_ALPHA, M_T_PREV,
                      M_T_UPLIFT, D_STATIC, FAIL_EVENT, FAIL_OUTPUT_FULL,
                      FAIL_STEP_BUDGET, FAIL_STEP_UNDERFLOW, FAIL_TRANSITIONS,
-                     LOG_KIND, LOG_PIVOT, LOG_POST, LOG_PRE, LOG_T, LOG_THETA,
+                     EV_UPLIFT, LOG_KIND, LOG_PIVOT, LOG_POST, LOG_PRE, LOG_T,
+                     LOG_THETA,
                      M_N_EVENTS, M_NFEV, M_NREJECT, M_NSTEPS, M_T_EXC_END, N_LOG, N_MET,
                      M_ENERGY_GAINS, M_T_FINAL, O_ATOL, O_DT_FIXED, O_MAX_STEP, O_MAX_STEPS,
                      FAIL_UNSTABLE, FAIL_INTERRUPTED, M_ERR_FIXED, M_DT_STABLE,
@@ -151,6 +152,18 @@ def log_event(log, cnt, t, kind, pre, post, theta, pivot):
         cnt[C_NLOG] = i + 1
     else:
         cnt[C_LOG_DROPPED] += 1
+
+
+@jit
+def undo_uplift(t, met, log, cnt):
+    """Take back an uplift decided at time t that did not happen (the body
+    turned back in the first step and never left the ground): the first
+    uplift time and the log entry, if either was made at t."""
+    if met[M_T_UPLIFT] == t:
+        met[M_T_UPLIFT] = np.nan
+    i = cnt[C_NLOG] - 1
+    if i >= 0 and log[i, LOG_KIND] == EV_UPLIFT and log[i, LOG_T] == t:
+        cnt[C_NLOG] = i
 
 
 @jit

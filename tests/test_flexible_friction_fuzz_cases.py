@@ -31,10 +31,7 @@ in the event log.
 """
 from __future__ import annotations
 
-import importlib.util
-import sys
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -44,19 +41,10 @@ from fastrock.running.models import flexible_friction_par
 from fastrock.kernels import layout as L
 
 from test_flexible_friction import lagrangian_model
+from test_flexible_friction_chatter import _fuzz
 
-_FUZZ = Path(__file__).resolve().parent.parent / "bench" / "fuzz.py"
 T_AFTER = 10.0
 TIGHT_RTOL = 1e-11
-
-
-def _fuzz():
-    if "fastrock_bench_fuzz" not in sys.modules:
-        spec = importlib.util.spec_from_file_location("fastrock_bench_fuzz", _FUZZ)
-        mod = importlib.util.module_from_spec(spec)
-        sys.modules[spec.name] = mod
-        spec.loader.exec_module(mod)
-    return sys.modules["fastrock_bench_fuzz"]
 
 
 def _scene(alpha, p, wr, im, mu_s, mu_k, rtol, pulse, zeta=0.0, hb=0.0):
