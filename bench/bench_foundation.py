@@ -107,14 +107,16 @@ def pulse_grid(n):
 
 
 # ------------------------------------------------------------------ SciPy baseline
-def scipy_two_spring_free(fnd, theta0=THETA0, t_end=DURATION, rtol=RTOL, atol=ATOL):
-    """Free release of the two-spring model with solve_ivp RK45 (physics.md 5.1, no ground motion).
+def scipy_two_spring_free(fnd, theta0=THETA0, t_end=DURATION, rtol=RTOL, atol=ATOL, body=BODY, mass=MASS,
+                          method="RK45"):
+    """Free release of the two-spring model with solve_ivp (``method``: RK45, or Radau for stiff
+    springs; physics.md 5.1, no ground motion).
 
     Returns (status, re-contacts "from above", zero-crossing times, nfev)."""
-    blk = FD.block_inertia(BODY, MASS)
+    blk = FD.block_inertia(body, mass)
     M, IC, b, h, g = blk.M, blk.I_C, blk.b, blk.h, blk.g
     kv, cv = fnd.k_v, fnd.c_v
-    th_over = BODY.theta_over
+    th_over = body.theta_over
 
     def comp(y, side):
         sq, cq = math.sin(y[2]), math.cos(y[2])
@@ -160,7 +162,7 @@ def scipy_two_spring_free(fnd, theta0=THETA0, t_end=DURATION, rtol=RTOL, atol=AT
     t, nfev, impacts, crossings, status = 0.0, 0, 0, [], "safe"
     while t < t_end:
         evs = [corner_event(1.0, 0, on), corner_event(-1.0, 1, on), cross, over]
-        sol = solve_ivp(rhs, (t, t_end), y, method="RK45", rtol=rtol, atol=atol, events=evs)
+        sol = solve_ivp(rhs, (t, t_end), y, method=method, rtol=rtol, atol=atol, events=evs)
         nfev += sol.nfev
         crossings.extend(sol.t_events[2])
         if sol.status != 1:

@@ -9,6 +9,7 @@ and is inlined into each entry kernel.
 import numpy as np
 
 from .config import jit, jit_generic
+from .layout import M_NFEV, O_ATOL, O_RTOL
 
 # rk.py lines 8-11
 SAFETY = 0.9
@@ -18,6 +19,8 @@ ERROR_EXPONENT = -1.0 / (4 + 1)   # rk.py 102: -1/(error_estimator_order + 1)
 N_STAGES = 6
 ORDER = 5
 ERROR_ESTIMATOR_ORDER = 4
+ERR_FIXED_MAX = 1e-2      # fixed step: largest relative local error (see
+#                           fixed_step_error): beyond it the step is unstable
 
 # rk.py 380-404 (class RK45).  Tuples, not arrays: Numba embeds them as
 # constants, whereas global arrays stop the on-disk cache.
@@ -114,17 +117,18 @@ def error_norm(K, h, y, y_new, rtol, atol, work):
 
 
 @jit
-def step_factor(err_norm, rejected):
-    """rk.py 149-163: step-size factor after an accepted/rejected step."""
+def step_factor(err_norm, rejected, exponent=ERROR_EXPONENT):
+    """rk.py 149-163: step-size factor after an accepted/rejected step
+    (``exponent``: -1/(q + 1) for an error estimate of order q)."""
     if err_norm < 1.0:
         if err_norm == 0.0:
             factor = MAX_FACTOR
         else:
-            factor = min(MAX_FACTOR, SAFETY * err_norm ** ERROR_EXPONENT)
+            factor = min(MAX_FACTOR, SAFETY * err_norm ** exponent)
         if rejected:
             factor = min(1.0, factor)
         return factor
-    return max(MIN_FACTOR, SAFETY * err_norm ** ERROR_EXPONENT)
+    return max(MIN_FACTOR, SAFETY * err_norm ** exponent)
 
 
 @jit_generic
@@ -204,3 +208,29 @@ def fixed_step_error(K, h, y_new, y_scale, atol):
         if not r <= worst:
             worst = r
     return worst
+
+
+# ---------------------------------------------------------------- the method
+# The driver (kernels/hybrid.py) takes its integration method as two
+# functions, ``step`` and ``dense``, with the signatures below; this pair is
+# plain Dormand-Prince, and kernels/rodas.py has the stiff alternatives.
+
+
+@jit_generic
+def dopri_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
+               opt, par, disc, hdr, smp, met):
+    """One DP5 step from (t, y) with f = f(t, y): fills y_new and K (row
+    N_STAGES: f(t + h, y_new), the next step's f).  Returns the scaled RMS
+    norm of the embedded error and the step-size exponent (adaptive), or
+    ``fixed_step_error`` and ERR_FIXED_MAX, its stability limit (``fixed``)."""
+    rk_step(rhs, t, y, f, h, K, ytmp, ftmp, y_new, par, disc, hdr, smp)
+    met[M_NFEV] += 6
+    if fixed:
+        return fixed_step_error(K, h, y_new, y_scale, opt[O_ATOL]), ERR_FIXED_MAX
+    return error_norm(K, h, y, y_new, opt[O_RTOL], opt[O_ATOL], ytmp), ERROR_EXPONENT
+
+
+@jit
+def dopri_dense(K, h, y_old, y_new, Q):
+    """Dense output of the last DP5 step (``dense_coefficients``)."""
+    dense_coefficients(K, Q)

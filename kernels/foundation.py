@@ -69,8 +69,9 @@ import numpy as np
 
 from .config import jit, jit_generic, jit_parallel
 from .excitation import ground, ground_rates
+from .rodas import auto_dense, auto_step
 from .hybrid import (EPS, book_time, check_energy, final_status, init_metrics,
-                     integrate_hybrid, log_event, sweep_rows)
+                     integrate_with, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_CONTACT, EV_FLIGHT,
                      EV_IMPACT, EV_UPLIFT, FLIGHT, MODE_FLIGHT, MODE_REST,
                      MODE_ROCK, MODE_WALL_REST,
@@ -668,10 +669,11 @@ def two_spring_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                    hist_d, log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     ts_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_hybrid(ts_rhs, ts_event, ts_transition, never_static,
-                            ts_after_step, TS_N_EVENTS, y, par, disc, hdr,
-                            smp, opt, t_eval, met, hist_t, hist_y, hist_d,
-                            log, cnt)
+    return integrate_with(auto_step, auto_dense,
+                          ts_rhs, ts_event, ts_transition, never_static,
+                          ts_after_step, TS_N_EVENTS, y, par, disc, hdr,
+                          smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+                          log, cnt)
 
 
 # ========================================================== (b) switching
@@ -848,10 +850,11 @@ def switching_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
                   log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     sw_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_hybrid(sw_rhs, sw_event, sw_transition, never_static,
-                            sw_after_step, SW_N_EVENTS, y, par, disc, hdr,
-                            smp, opt, t_eval, met, hist_t, hist_y, hist_d,
-                            log, cnt)
+    return integrate_with(auto_step, auto_dense,
+                          sw_rhs, sw_event, sw_transition, never_static,
+                          sw_after_step, SW_N_EVENTS, y, par, disc, hdr,
+                          smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+                          log, cnt)
 
 
 # ====================================================== (c) linear vibration
@@ -916,10 +919,11 @@ def linear_sdof_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                     hist_d, log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     ls_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_hybrid(ls_rhs, ls_event, ls_transition, never_static,
-                            ls_after_step, LS_N_EVENTS, y, par, disc, hdr,
-                            smp, opt, t_eval, met, hist_t, hist_y, hist_d,
-                            log, cnt)
+    return integrate_with(auto_step, auto_dense,
+                          ls_rhs, ls_event, ls_transition, never_static,
+                          ls_after_step, LS_N_EVENTS, y, par, disc, hdr,
+                          smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+                          log, cnt)
 
 
 # ---------------------------------------------------------------- entries

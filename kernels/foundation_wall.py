@@ -76,8 +76,9 @@ from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT,
                          ts_init_state, ts_kinetic, ts_loads, ts_set_mode,
                          ts_shared_event, ts_shared_transition, ts_transition,
                          never_static)
+from .rodas import auto_dense, auto_step
 from .hybrid import (EPS, book_time, check_energy, elastic_below_resolution,
-                     integrate_hybrid, is_chatter, log_event, sweep_rows)
+                     integrate_with, is_chatter, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
                      LEANING, MODE_ROCK, MODE_WALL_REST, M_WALL_IMPACTS,
                      N_DISC, O_EARLY_EXIT, O_T0, RUNNING, S_ON, SAFE_REST)
@@ -309,10 +310,11 @@ def two_spring_wall_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                         hist_d, log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     ts_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_hybrid(fw_rhs, fw_event, fw_transition, never_static,
-                            fw_after_step, FW_N_EVENTS, y, par, disc, hdr,
-                            smp, opt, t_eval, met, hist_t, hist_y, hist_d,
-                            log, cnt)
+    return integrate_with(auto_step, auto_dense,
+                          fw_rhs, fw_event, fw_transition, never_static,
+                          fw_after_step, FW_N_EVENTS, y, par, disc, hdr,
+                          smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+                          log, cnt)
 
 
 # ================================================ switching model and wall
@@ -373,10 +375,11 @@ def switching_wall_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                        hist_d, log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     sw_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_hybrid(sw_rhs, sww_event, sww_transition,
-                            sww_static_margin, sww_after_step, SWW_N_EVENTS,
-                            y, par, disc, hdr, smp, opt, t_eval, met, hist_t,
-                            hist_y, hist_d, log, cnt)
+    return integrate_with(auto_step, auto_dense,
+                          sw_rhs, sww_event, sww_transition,
+                          sww_static_margin, sww_after_step, SWW_N_EVENTS,
+                          y, par, disc, hdr, smp, opt, t_eval, met, hist_t,
+                          hist_y, hist_d, log, cnt)
 
 
 # ---------------------------------------------------------------- entries

@@ -29,8 +29,8 @@ import numpy as np
 from numba import prange
 
 from .config import DEBUG, jit, jit_generic, next_up, ulp
-from .dopri import (N_STAGES, dense_coefficients, dense_eval, error_norm,
-                    fixed_step_error, rk_step, select_initial_step, step_factor)
+from .dopri import (ERR_FIXED_MAX, N_STAGES, dense_eval, dopri_dense,
+                    dopri_step, select_initial_step, step_factor)
 from .excitation import (excitation_end, excitation_start, next_breakpoint,
                          scan_origin, scan_step)
 from .layout import (D_MODE, D_SLIP_DIR, MODE_REST, MODE_ROCK, MODE_SLIDE,
@@ -52,8 +52,7 @@ MAX_BISECT = 200          # iteration cap of every bisection
 MAX_FALSI = 4 * MAX_BISECT   # regula falsi: at least MAX_BISECT halvings
 EPS = 2.220446049250313e-16
 MAX_ZERO_LENGTH = 200     # transitions in a row without time advancing
-ERR_FIXED_MAX = 1e-2      # fixed step: largest relative local error (see
-#                           fixed_step_error): beyond it the step is unstable
+N_WORK_FIXED = 7          # work rows of a stiff method besides its 2 n
 C_NHIST = 0
 C_NLOG = 1
 C_LOG_DROPPED = 2
@@ -394,12 +393,40 @@ def _any_nonzero(y):
 def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                      n_events, y, par, disc, hdr, smp, opt, t_eval, met,
                      hist_t, hist_y, hist_d, log, cnt):
-    """Integrate one run of a hybrid model from opt[O_T0] to opt[O_T_END].
+    """Integrate one run of a hybrid model from opt[O_T0] to opt[O_T_END]
+    with Dormand-Prince 5(4) (``integrate_with`` and the DP5 method).
 
     ``y`` (state) and ``disc`` are updated in place and hold the final state.
     ``t_eval`` (sorted) selects output times; if it is empty and ``hist_t``
     has room, every accepted step and every event is stored.  Returns the
     run status (layout codes).
+    """
+    return integrate_with(dopri_step, dopri_dense, rhs, event, transition,
+                          static_margin, after_step, n_events, y, par, disc,
+                          hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
+                          log, cnt)
+
+
+@jit_generic
+def integrate_with(step, dense, rhs, event, transition, static_margin,
+                   after_step, n_events, y, par, disc, hdr, smp, opt, t_eval,
+                   met, hist_t, hist_y, hist_d, log, cnt):
+    """``integrate_hybrid`` with the integration method as two functions
+    (``dopri.dopri_step`` / ``dopri_dense`` have the contract):
+
+    ``step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
+    opt, par, disc, hdr, smp, met) -> (err, exponent)``
+        one step of size h from (t, y), f = f(t, y); fills y_new and leaves
+        f(t + h, y_new) in ``K[N_STAGES]``; counts its evaluations in
+        met[M_NFEV].  ``fresh``: the first try from this (t, y) (a rejected
+        try repeats the point with a smaller h).  Adaptive: ``err`` is the
+        scaled error norm (accept below 1), ``exponent`` that of the
+        step-size factor, -1/(q + 1).  With ``fixed``: the relative local
+        error of ``fixed_step_error`` and the value above which it means an
+        unstable step (ERR_FIXED_MAX for DP5, inf for an L-stable method).
+    ``dense(K, h, y_old, y_new, Q)``
+        the last step's dense output as ``dense_eval`` reads it: y_old + h
+        (Q0 x + Q1 x^2 + Q2 x^3 + Q3 x^4), x = (t - t_old)/h.
     """
     n = y.shape[0]
     t = opt[O_T0]
@@ -419,7 +446,8 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
     ytmp = np.empty(n)
     yev = np.empty(n)
     ftmp = np.empty(n)
-    K = np.empty((N_STAGES + 1, n))
+    # the stages, then the work rows of a stiff method (kernels/rodas.py)
+    K = np.zeros((N_STAGES + 1 + N_WORK_FIXED + 2 * n, n))
     Q = np.empty((n, 4))
     g0 = np.empty(n_events)
     gd0 = np.empty(n_events)
@@ -527,14 +555,13 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                 if t_new > t_bound or t_bound - t_new < 1e-9 * dt_fixed:
                     t_new = t_bound
                 h = t_new - t
-                rk_step(rhs, t, y, f, h, K, ytmp, ftmp, y_new, par, disc, hdr,
-                        smp)
-                met[M_NFEV] += 6
+                err, err_max = step(rhs, t, y, f, h, True, True, K, ytmp,
+                                    ftmp, y_new, y_scale, opt, par, disc, hdr,
+                                    smp, met)
                 steps_taken += 1.0
-                err = fixed_step_error(K, h, y_new, y_scale, atol)
                 if not err <= met[M_ERR_FIXED]:
                     met[M_ERR_FIXED] = err
-                if (scaled and not err <= ERR_FIXED_MAX) or \
+                if (scaled and not err <= err_max) or \
                         not _all_finite(y_new):
                     # a diverging step is no physics.  The error grows
                     # about as h^5 up to the limit: suggest a step inside.
@@ -571,17 +598,16 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                         t_new = t_bound
                     h = t_new - t
                     h_abs = abs(h)
-                    rk_step(rhs, t, y, f, h, K, ytmp, ftmp, y_new, par, disc,
-                            hdr, smp)
-                    met[M_NFEV] += 6
+                    err, expo = step(rhs, t, y, f, h, not rejected, False, K,
+                                     ytmp, ftmp, y_new, y_scale, opt, par,
+                                     disc, hdr, smp, met)
                     steps_taken += 1.0
-                    err = error_norm(K, h, y, y_new, rtol, atol, ytmp)
                     if not np.isfinite(err):
                         err = np.inf
                     if err < 1.0:
-                        h_abs *= step_factor(err, rejected)
+                        h_abs *= step_factor(err, rejected, expo)
                         break
-                    h_abs *= step_factor(err, True)
+                    h_abs *= step_factor(err, True, expo)
                     rejected = True
                     met[M_NREJECT] += 1
                 if failed:
@@ -594,7 +620,7 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
                                                hdr, smp)
             for i in range(n):
                 y_old[i] = y[i]
-            dense_coefficients(K, Q)
+            dense(K, h, y_old, y_new, Q)
             t_term = np.inf
             k_term = -1
             event_failed = False

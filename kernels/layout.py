@@ -93,7 +93,14 @@ O_EPS_OMEGA = 8     # rad/s, chatter-to-rest velocity threshold
 O_EPS_T = 9         # s, chatter-to-rest impact interval
 O_T0 = 10
 O_ABORT = 11        # set to 1 from outside (Ctrl-C): the run stops at once
-N_OPT = 12
+O_METHOD = 12       # METHOD_*: integration method of the models with a stiff one
+N_OPT = 13
+
+# O_METHOD (kernels/rodas.py): explicit DP5 that turns to Rodas4 where the
+# problem is stiff, DP5 only, or Rodas4 only
+METHOD_AUTO = 0
+METHOD_DOPRI = 1
+METHOD_RODAS = 2
 
 # ---- event log (float64 rows) ----------------------------------------------
 LOG_T = 0

@@ -232,6 +232,7 @@ def overturning_spectrum(body, amplitude_ratios, frequency_ratios, sign=+1, *, p
         raise ValueError("frequency_ratios must be > 0")
     amps, freqs = _to_ratios(body, amps, freqs, amplitude_unit, frequency_unit)
     spec = registry.select(body, wall, friction, foundation, None if mass is None else V.positive("mass", mass))
+    solver.check_model(spec.model)
     ground = as_ground(ground)
     if ground is not None:
         ground.check_scene(body, friction=friction, flexible=spec.flexible, foundation=foundation)

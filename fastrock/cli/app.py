@@ -172,6 +172,14 @@ def _add_solver_options(p):
     g.add_argument("--atol", type=float, help="absolute tolerance [rad, rad/s] (default rtol*1e-2)")
     g.add_argument("--dt", type=float, help="fixed integration step [s] instead of adaptive RK45 "
                                             "(default: adaptive)")
+    g.add_argument("--method", choices=("auto", "RK45", "Rodas4"),
+                   help="integration method (default auto: RK45, turning to the stiff Rodas4 on the foundation "
+                        "models where stiff springs call for it)")
+
+
+def _solver(args):
+    from fastrock.running.solver import make_solver
+    return make_solver(None, args.rtol, args.atol, args.dt, **({"method": args.method} if args.method else {}))
 
 
 def cmd_spectrum(args):
@@ -189,7 +197,7 @@ def cmd_spectrum(args):
     df = overturning_spectrum(body, amps, freqs, sign=signs, pulse=args.pulse, amplitude_unit=args.amplitude_unit,
                               frequency_unit=args.frequency_unit, wall=wall, friction=_friction(args), ground=_ground(args),
                               foundation=_foundation(args, body), mass=args.mass,
-                              rtol=args.rtol, atol=args.atol, dt=args.dt, progress=not args.quiet)
+                              solver=_solver(args), progress=not args.quiet)
     el = time.perf_counter() - t0
     n_total = len(signs) * amps.size * freqs.size
     tables = write_table(df, args)
@@ -232,7 +240,7 @@ def cmd_simulate(args):
                   amplitude_unit=args.amplitude_unit, frequency_unit=args.frequency_unit)
     r = simulate(body, pulse, wall=_wall(args), friction=_friction(args), ground=_ground(args),
                  foundation=_foundation(args, body),
-                 mass=args.mass, theta0=args.theta0, rtol=args.rtol, atol=args.atol, dt=args.dt, duration=args.duration)
+                 mass=args.mass, theta0=args.theta0, solver=_solver(args), duration=args.duration)
     m = r.metrics
     print(f"outcome {r.outcome} ({r.status}); kernel {r.kernel}")
     print(f"max |theta|/alpha = {m['max_rotation_ratio']:.6g}, impacts = {m['impacts']}, "

@@ -70,6 +70,7 @@ def _prepare(i, scene, early_exit):
         ground.check_scene(body, friction=scene.friction, flexible=spec.flexible, foundation=scene.foundation)
         early_exit = False      # the early decisions assume level ground
     solver = make_solver(scene.solver, None, None, None)
+    solver.check_model(spec.model)
     vertical = X.match_components(scene.excitation, scene.vertical)
     hdr, smp, opt, _te, _cap = run_inputs(body, scene.excitation, vertical, scene.duration, scene.t_after,
                                           None, None, solver, early_exit, ground)

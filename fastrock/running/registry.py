@@ -106,6 +106,11 @@ class Model:
     def flight(self):
         return "flight" in self.effects
 
+    @property
+    def stiff(self):
+        """The kernel integrates with ``rodas.auto_step`` (Solver.method)."""
+        return "foundation" in self.effects
+
     def load(self):
         return importlib.import_module(f"fastrock.kernels.{self.module}")
 

@@ -132,7 +132,7 @@ class Scene:
                             else (None, 1.0))
         solver = Solver(**only_keys(as_table(data.get("solver", {}), "solver"), "solver",
                                 {"rtol", "atol", "dt", "max_steps", "max_step", "record_breakpoints",
-                                 "eps_omega", "eps_t"}))
+                                 "eps_omega", "eps_t", "method"}))
         run = only_keys(as_table(data.get("run", {}), "run"), "run", {"theta0", "dtheta0", "duration", "t_after"})
         for k, v in run.items():      # checked here too, so that a bad file fails when it is read
             (V.positive if k == "duration" else V.non_negative if k == "t_after" else V.finite)(f"[run] {k}", v)

@@ -147,6 +147,7 @@ def simulate(body, excitation=None, *, vertical=None, wall=None, friction=None, 
                                    history_capacity=history_capacity, ground=ground, early_exit=early_exit,
                                    wall=wall)
     solver = make_solver(solver, rtol, atol, dt, **kw)
+    solver.check_model(spec.model)
     excitation = X.as_excitation(excitation)
     vertical = X.as_excitation(vertical, "vertical")
     y0 = initial_state(spec, body, theta0, dtheta0, wall, ground)

@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -11,6 +11,8 @@ from fastrock.kernels import layout as L
 
 DEFAULT_RTOL = 1e-8
 DEFAULT_T_AFTER = 10.0
+#: Solver.method -> the kernels' O_METHOD code
+METHODS = {"auto": L.METHOD_AUTO, "RK45": L.METHOD_DOPRI, "Rodas4": L.METHOD_RODAS}
 
 
 @dataclass(frozen=True)
@@ -36,6 +38,14 @@ class Solver:
         the interpolated record).
     eps_omega, eps_t : float
         Chatter-to-rest thresholds [rad/s, s] (docs: theory/numerics).
+    method : {"auto", "RK45", "Rodas4"}
+        Integration method.  ``"auto"``: Dormand-Prince 5(4); on the
+        flexible-foundation models it turns to the stiff method Rodas4
+        (L-stable Rosenbrock, order 4(3)) where the problem is stiff (a stiff,
+        damped spring) and back where it is not.  ``"RK45"``: Dormand-Prince
+        only.  ``"Rodas4"``: Rodas4 only (foundation models; the others refuse
+        it).  With ``dt``, "auto" takes a step at which DP5 is unstable again
+        with Rodas4.
     """
 
     rtol: float = DEFAULT_RTOL
@@ -46,6 +56,8 @@ class Solver:
     record_breakpoints: bool = True
     eps_omega: float = 1e-9
     eps_t: float = 1e-9
+    # studies saved before this field keep their hash (studies.definition._canon)
+    method: str = field(default="auto", metadata={"hash_default": True})
 
     def __post_init__(self):
         V.in_open("rtol", self.rtol, 1e-15, 1.0)
@@ -60,6 +72,14 @@ class Solver:
         V.boolean("record_breakpoints", self.record_breakpoints)
         V.non_negative("eps_omega", self.eps_omega)
         V.non_negative("eps_t", self.eps_t)
+        if self.method not in METHODS:
+            raise ValueError(f"method must be one of {', '.join(map(repr, METHODS))}, got {self.method!r}")
+
+    def check_model(self, model):
+        """Refuse ``method="Rodas4"`` for a registry model that has no stiff method."""
+        if self.method == "Rodas4" and not model.stiff:
+            raise ValueError(f"method='Rodas4' is available on the flexible-foundation models only; the "
+                             f"model {model.name!r} runs Dormand-Prince (method='auto' or 'RK45')")
 
     def check_fixed_steps(self, span, what="the run"):
         """With a fixed step, refuse a run of ``span`` seconds that needs more steps than
@@ -74,7 +94,8 @@ class Solver:
 
     @property
     def name(self):
-        return f"fixed dt={self.dt:g}" if self.dt else f"RK45 rtol={self.rtol:g}"
+        m = "" if self.method == "auto" else f"{self.method} "
+        return f"{m}fixed dt={self.dt:g}" if self.dt else f"{self.method if m else 'RK45'} rtol={self.rtol:g}"
 
     def options(self, t_end, early_exit, t0=0.0):
         opt = np.zeros(L.N_OPT)
@@ -89,6 +110,7 @@ class Solver:
         opt[L.O_EPS_OMEGA] = self.eps_omega
         opt[L.O_EPS_T] = self.eps_t
         opt[L.O_T0] = t0
+        opt[L.O_METHOD] = METHODS[self.method]
         return opt
 
 

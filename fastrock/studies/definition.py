@@ -214,7 +214,7 @@ class Study:
             variants.append(v)
         solver = Solver(**only_keys(as_table(data.get("solver", {}), "solver"), "solver",
                                 {"rtol", "atol", "dt", "max_steps", "max_step",
-                                 "record_breakpoints", "eps_omega", "eps_t"}))
+                                 "record_breakpoints", "eps_omega", "eps_t", "method"}))
         run = dict(only_keys(as_table(data.get("run", {}), "run"), "run",
                          {"output", "backend", "scheduler", "chunk_size"}))
         for key in ("output", "scheduler"):
@@ -301,6 +301,7 @@ class Study:
                     friction, foundation, mass = _resolve_effects(given[bi], effects[vi])
                     mass = registry.carried_mass(given[bi], foundation, mass)
                     specs[bi, vi] = registry.select(body, wall, friction, foundation, mass)
+                    solver.check_model(specs[bi, vi].model)
                     if effects[vi].get("ground") is not None:
                         effects[vi]["ground"].check_scene(body, friction=friction, flexible=specs[bi, vi].flexible,
                                                           foundation=foundation)

@@ -112,6 +112,7 @@ def rows_sweep(records, rec_idx, b, s, wall_idx, walls, *, e, solver, t_after, e
                 for k in set(rec_idx.tolist()):
                     ground.check_lift_off(body, records[k].pga)
         specs.append(registry.select(body, walls[wall_idx[i]]))
+        solver.check_model(specs[-1].model)
         pvals[i] = body.p
         evals[i] = body.e if shape is None else body.e12
         if shape is not None:

@@ -1,0 +1,143 @@
+"""Stiff, damped springs under the foundation models: ``Solver(method="auto")``
+turns to Rodas4 (kernels/rodas.py) and gives DP5's answers at a fraction
+of the steps.  Oracle: DP5 (``method="RK45"``) at tight tolerance, and the
+converged values of both methods."""
+import math
+
+import numpy as np
+import pytest
+
+import fastrock as fr
+from fastrock.model.foundation import SwitchingFoundation, TwoSpringFoundation
+
+MASS = 10.0
+
+
+def _slender():
+    # foundation:2027 fuzz scenes: b/h ~ 0.011, springs 82 times the block's p, zeta 0.17
+    body = fr.RigidBlock.rectangle(b=0.0078, h=0.70)
+    return body, TwoSpringFoundation.from_vibration(body, omega=82 * body.p, zeta=0.17, mass=MASS)
+
+
+def _pulse(body, ratio, freq=3.0):
+    return fr.Pulse(amplitude=ratio, amplitude_unit="g_tan_alpha", frequency=freq * body.p / (2 * math.pi))
+
+
+def _run(body, fnd, pulse, t_after=0.5, **solver):
+    return fr.simulate(body, pulse, foundation=fnd, mass=MASS, solver=fr.Solver(**solver), t_after=t_after,
+                       history_capacity=10)
+
+
+@pytest.mark.parametrize("ratio", [0.5, 1.05, 1.3, 3.0])
+def test_two_spring_stiff_runs_agree_with_dp5(ratio):
+    """Same status and impacts; max rotation and uplift time within what
+    DP5 itself moves between rtol 1e-8 and 1e-11; at least 50 times fewer
+    steps."""
+    body, fnd = _slender()
+    p = _pulse(body, ratio)
+    dp = _run(body, fnd, p, rtol=1e-11, method="RK45")
+    dp8 = _run(body, fnd, p, rtol=1e-8, method="RK45")
+    au = _run(body, fnd, p, rtol=1e-8)
+    assert au.status == dp.status == dp8.status
+    assert au.metrics["impacts"] == dp.metrics["impacts"]
+    spread = abs(dp8.metrics["max_rotation"] - dp.metrics["max_rotation"])
+    assert abs(au.metrics["max_rotation"] - dp.metrics["max_rotation"]) <= max(spread, 1e-6 * dp.metrics["max_rotation"])
+    if not math.isnan(dp.metrics["time_uplift"]):
+        t_spread = abs(dp8.metrics["time_uplift"] - dp.metrics["time_uplift"])
+        assert abs(au.metrics["time_uplift"] - dp.metrics["time_uplift"]) <= max(t_spread, 1e-6)
+    assert au.metrics["steps"] * 50 < dp8.metrics["steps"]
+
+
+def test_rodas4_converges_to_the_dp5_answer():
+    """Both methods converge to one uplift time and max rotation: at rtol
+    1e-12 they agree to 1e-8 and 1e-9 relative.  (Rodas4 locates events on
+    a dense output of order 3, whose error goes as rtol^(4/5), 4e-10 here.)"""
+    body, fnd = _slender()
+    p = _pulse(body, 1.05)
+    dp = _run(body, fnd, p, rtol=1e-12, method="RK45")
+    ro = _run(body, fnd, p, rtol=1e-12, method="Rodas4")
+    assert ro.status == dp.status
+    assert ro.metrics["time_uplift"] == pytest.approx(dp.metrics["time_uplift"], rel=1e-8)
+    assert ro.metrics["max_rotation"] == pytest.approx(dp.metrics["max_rotation"], rel=1e-9)
+    errs = [abs(_run(body, fnd, p, rtol=r, method="Rodas4").metrics["time_uplift"] - dp.metrics["time_uplift"])
+            for r in (1e-6, 1e-8, 1e-10)]
+    assert errs[0] > errs[1] > errs[2]
+
+
+def test_a_run_past_the_dp5_step_budget_ends_definite():
+    """The budget of a 10-s full run, which DP5 exhausts in rocking on the
+    dashpots' stability limit, is plenty for the switch."""
+    body, fnd = _slender()
+    p = _pulse(body, 1.3)
+    with pytest.warns(RuntimeWarning):
+        dp = _run(body, fnd, p, t_after=10.0, method="RK45", max_steps=200_000)
+    assert dp.status == "failed:step-budget"
+    au = _run(body, fnd, p, t_after=10.0, max_steps=200_000)
+    assert not au.status.startswith("failed")
+    assert au.metrics["steps"] < 20_000
+
+
+def test_a_fixed_step_unstable_for_dp5_is_taken_by_rodas4():
+    """dt = 2 ms is 100 times the dashpots' DP5 limit: "RK45" fails as
+    unstable, "auto" finishes and agrees with the adaptive run."""
+    body, fnd = _slender()
+    p = _pulse(body, 1.3)
+    with pytest.warns(RuntimeWarning):
+        dp = _run(body, fnd, p, dt=2e-3, method="RK45")
+    assert dp.status == "failed:unstable-step"
+    au = _run(body, fnd, p, dt=2e-4)
+    ref = _run(body, fnd, p, rtol=1e-10)
+    assert au.status == ref.status
+    assert au.metrics["max_rotation"] == pytest.approx(ref.metrics["max_rotation"], rel=1e-3)
+
+
+@pytest.mark.parametrize("foundation", ["switching", "wall", "friction"])
+def test_other_foundation_models_switch_and_agree(foundation):
+    """The switching model, a wall beside the two-spring model and sliding
+    on it: same status as DP5 at rtol 1e-10 and max rotation within 1e-5
+    relative, in fewer steps."""
+    body, fnd = _slender()
+    kw = {}
+    if foundation == "switching":
+        fnd = SwitchingFoundation.from_vibration(body, omega=82 * body.p, zeta=0.17, mass=MASS)
+    elif foundation == "wall":
+        kw["wall"] = fr.Wall(gap=0.02)
+    else:
+        kw["friction"] = fr.Friction(0.8)
+    p = _pulse(body, 1.3)
+
+    def run(**solver):
+        return fr.simulate(body, p, foundation=fnd, mass=MASS, solver=fr.Solver(**solver), t_after=0.5,
+                           history_capacity=10, **kw)
+    dp = run(rtol=1e-10, method="RK45")
+    au = run(rtol=1e-8)
+    assert au.status == dp.status
+    assert au.metrics["max_rotation"] == pytest.approx(dp.metrics["max_rotation"], rel=1e-5)
+    assert au.metrics["steps"] < dp.metrics["steps"]
+
+
+def test_method_rodas4_is_refused_where_no_model_has_it():
+    body = fr.RigidBlock.rectangle(b=0.2, h=1.0)
+    with pytest.raises(ValueError, match="method='Rodas4'.*foundation"):
+        fr.simulate(body, _pulse(body, 2.0), solver=fr.Solver(method="Rodas4"))
+    with pytest.raises(ValueError, match="method must be one of"):
+        fr.Solver(method="rodas")
+
+
+def test_method_in_a_scene_file(tmp_path):
+    from fastrock.running.scene import Scene
+    f = tmp_path / "s.toml"
+    f.write_text('[body]\ntype = "rigid"\nalpha = 0.25\np = 2.0\n[excitation]\ntype = "pulse"\namplitude = 0.5\n'
+                 '[solver]\nmethod = "RK45"\n')
+    assert Scene.from_toml(f).solver.method == "RK45"
+
+
+def test_the_spectrum_of_a_stiff_foundation_keeps_its_outcomes():
+    """A 4 x 3 overturning spectrum: "auto" against "RK45" at rtol 1e-10,
+    cell by cell."""
+    body, fnd = _slender()
+    kw = dict(amplitude_ratios=np.array([0.9, 1.2, 2.0, 4.0]), frequency_ratios=np.array([2.0, 4.0, 8.0]),
+              foundation=fnd, mass=MASS, progress=False)
+    a = fr.overturning_spectrum(body, **kw)
+    b = fr.overturning_spectrum(body, solver=fr.Solver(rtol=1e-10, method="RK45"), **kw)
+    assert list(a["outcome"]) == list(b["outcome"])
