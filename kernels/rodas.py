@@ -37,7 +37,7 @@ import numpy as np
 
 from .config import jit, jit_generic, next_up
 from .dopri import ERR_FIXED_MAX, N_STAGES, dopri_dense, dopri_step
-from .hybrid import EPS
+from .hybrid import EPS, _all_finite
 from .layout import (M_NFEV, METHOD_DOPRI, METHOD_RODAS, O_ATOL, O_METHOD,
                      O_RTOL)
 
@@ -305,14 +305,6 @@ def _rho_bound(K, n, v, w):
     return lam
 
 
-@jit
-def _finite(y):
-    for i in range(y.shape[0]):
-        if not np.isfinite(y[i]):
-            return False
-    return True
-
-
 @jit_generic
 def auto_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
               opt, par, disc, hdr, smp, met):
@@ -331,7 +323,7 @@ def auto_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
         if method == METHOD_DOPRI:
             return err, expo
         if fixed:
-            if err <= ERR_FIXED_MAX and _finite(y_new):
+            if err <= ERR_FIXED_MAX and _all_finite(y_new):
                 return err, expo
             K[r_s, S_STIFF] = 1.0
             K[r_s, S_COUNT] = 0.0
