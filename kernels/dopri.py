@@ -211,9 +211,9 @@ def fixed_step_error(K, h, y_new, y_scale, atol):
 
 
 # ---------------------------------------------------------------- the method
-# The driver (kernels/hybrid.py) takes its integration method as two
-# functions, ``step`` and ``dense``, with the signatures below; this pair is
-# plain Dormand-Prince, and kernels/rodas.py has the stiff alternatives.
+# The driver (kernels/hybrid.py) takes its integration method as three
+# functions, ``step``, ``dense`` and ``work_rows``, with the signatures below;
+# these are plain Dormand-Prince, and kernels/rodas.py has the stiff ones.
 
 
 @jit_generic
@@ -234,3 +234,9 @@ def dopri_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
 def dopri_dense(K, h, y_old, y_new, Q):
     """Dense output of the last DP5 step (``dense_coefficients``)."""
     dense_coefficients(K, Q)
+
+
+@jit
+def dopri_work_rows(n):
+    """DP5 needs no rows of K beyond its stages."""
+    return 0

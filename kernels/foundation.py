@@ -69,7 +69,7 @@ import numpy as np
 
 from .config import jit, jit_generic, jit_parallel
 from .excitation import ground, ground_rates
-from .rodas import auto_dense, auto_step
+from .rodas import auto_dense, auto_step, work_rows
 from .hybrid import (EPS, book_time, check_energy, final_status, init_metrics,
                      integrate_with, log_event, sweep_rows)
 from .layout import (D_MODE, D_PIVOT, D_STATIC, EV_CONTACT, EV_FLIGHT,
@@ -669,7 +669,7 @@ def two_spring_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                    hist_d, log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     ts_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_with(auto_step, auto_dense,
+    return integrate_with(auto_step, auto_dense, work_rows,
                           ts_rhs, ts_event, ts_transition, never_static,
                           ts_after_step, TS_N_EVENTS, y, par, disc, hdr,
                           smp, opt, t_eval, met, hist_t, hist_y, hist_d,
@@ -850,7 +850,7 @@ def switching_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
                   log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     sw_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_with(auto_step, auto_dense,
+    return integrate_with(auto_step, auto_dense, work_rows,
                           sw_rhs, sw_event, sw_transition, never_static,
                           sw_after_step, SW_N_EVENTS, y, par, disc, hdr,
                           smp, opt, t_eval, met, hist_t, hist_y, hist_d,
@@ -919,7 +919,7 @@ def linear_sdof_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                     hist_d, log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     ls_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_with(auto_step, auto_dense,
+    return integrate_with(auto_step, auto_dense, work_rows,
                           ls_rhs, ls_event, ls_transition, never_static,
                           ls_after_step, LS_N_EVENTS, y, par, disc, hdr,
                           smp, opt, t_eval, met, hist_t, hist_y, hist_d,

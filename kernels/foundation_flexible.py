@@ -70,7 +70,7 @@ from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT,
                          TS_PEAK, TS_RIGHT, corner_arm, corner_force,
                          never_static, ts_init_corners, ts_shared_event,
                          ts_shared_transition, within_tolerance)
-from .rodas import auto_dense, auto_step
+from .rodas import auto_dense, auto_step, work_rows
 from .hybrid import book_time, final_status, integrate_with, sweep_rows
 from .layout import (D_MODE, D_STATIC, MODE_REST, M_MAX_THETA_NEG,
                      M_MAX_THETA_POS, M_MAX_U, M_MIN_U, M_T_EXC_END, N_DISC,
@@ -296,7 +296,7 @@ def ff_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
            cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     ff_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_with(auto_step, auto_dense,
+    return integrate_with(auto_step, auto_dense, work_rows,
                           ff_rhs, ff_event, ff_transition, never_static,
                           ff_after_step, FF_N_EVENTS, y, par, disc, hdr,
                           smp, opt, t_eval, met, hist_t, hist_y, hist_d,

@@ -69,7 +69,7 @@ from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT, TS_IQ,
                          ts_set_rest, ts_shared_event, ts_shared_transition,
                          ts_stays_in_contact)
 from .friction import track_slide
-from .rodas import auto_dense, auto_step
+from .rodas import auto_dense, auto_step, work_rows
 from .hybrid import (book_time, final_status, integrate_with, log_event,
                      sweep_rows)
 from .layout import (D_MODE, D_STATIC, EV_SLIP, EV_STICK, MODE_FLIGHT,
@@ -373,7 +373,7 @@ def two_spring_friction_run(y, par, hdr, smp, opt, t_eval, met, hist_t,
                             hist_y, hist_d, log, cnt):
     disc = np.zeros(N_DISC_FF, dtype=np.int64)
     ff_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_with(auto_step, auto_dense,
+    return integrate_with(auto_step, auto_dense, work_rows,
                           ff_rhs, ff_event, ff_transition, never_static,
                           ff_after_step, FF_N_EVENTS, y, par, disc, hdr,
                           smp, opt, t_eval, met, hist_t, hist_y, hist_d,

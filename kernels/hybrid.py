@@ -30,7 +30,8 @@ from numba import prange
 
 from .config import DEBUG, jit, jit_generic, next_up, ulp
 from .dopri import (ERR_FIXED_MAX, N_STAGES, dense_eval, dopri_dense,
-                    dopri_step, select_initial_step, step_factor)
+                    dopri_step, dopri_work_rows, select_initial_step,
+                    step_factor)
 from .excitation import (excitation_end, excitation_start, next_breakpoint,
                          scan_origin, scan_step)
 from .layout import (D_MODE, D_SLIP_DIR, MODE_REST, MODE_ROCK, MODE_SLIDE,
@@ -52,7 +53,6 @@ MAX_BISECT = 200          # iteration cap of every bisection
 MAX_FALSI = 4 * MAX_BISECT   # regula falsi: at least MAX_BISECT halvings
 EPS = 2.220446049250313e-16
 MAX_ZERO_LENGTH = 200     # transitions in a row without time advancing
-N_WORK_FIXED = 7          # work rows of a stiff method besides its 2 n
 C_NHIST = 0
 C_NLOG = 1
 C_LOG_DROPPED = 2
@@ -401,18 +401,19 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
     has room, every accepted step and every event is stored.  Returns the
     run status (layout codes).
     """
-    return integrate_with(dopri_step, dopri_dense, rhs, event, transition,
-                          static_margin, after_step, n_events, y, par, disc,
-                          hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d,
-                          log, cnt)
+    return integrate_with(dopri_step, dopri_dense, dopri_work_rows, rhs,
+                          event, transition, static_margin, after_step,
+                          n_events, y, par, disc, hdr, smp, opt, t_eval, met,
+                          hist_t, hist_y, hist_d, log, cnt)
 
 
 @jit_generic
-def integrate_with(step, dense, rhs, event, transition, static_margin,
-                   after_step, n_events, y, par, disc, hdr, smp, opt, t_eval,
-                   met, hist_t, hist_y, hist_d, log, cnt):
-    """``integrate_hybrid`` with the integration method as two functions
-    (``dopri.dopri_step`` / ``dopri_dense`` have the contract):
+def integrate_with(step, dense, work_rows, rhs, event, transition,
+                   static_margin, after_step, n_events, y, par, disc, hdr,
+                   smp, opt, t_eval, met, hist_t, hist_y, hist_d, log, cnt):
+    """``integrate_hybrid`` with the integration method as three functions
+    (``dopri.dopri_step`` / ``dopri_dense`` / ``dopri_work_rows`` have the
+    contract):
 
     ``step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
     opt, par, disc, hdr, smp, met) -> (err, exponent)``
@@ -427,6 +428,9 @@ def integrate_with(step, dense, rhs, event, transition, static_margin,
     ``dense(K, h, y_old, y_new, Q)``
         the last step's dense output as ``dense_eval`` reads it: y_old + h
         (Q0 x + Q1 x^2 + Q2 x^3 + Q3 x^4), x = (t - t_old)/h.
+    ``work_rows(n) -> int``
+        rows of K the method keeps after the N_STAGES + 1 stage rows (its
+        work arrays and state between steps), zeroed at the start of a run.
     """
     n = y.shape[0]
     t = opt[O_T0]
@@ -446,8 +450,11 @@ def integrate_with(step, dense, rhs, event, transition, static_margin,
     ytmp = np.empty(n)
     yev = np.empty(n)
     ftmp = np.empty(n)
-    # the stages, then the work rows of a stiff method (kernels/rodas.py)
-    K = np.zeros((N_STAGES + 1 + N_WORK_FIXED + 2 * n, n))
+    # the stages, then the method's work rows, zeroed (its state)
+    K = np.empty((N_STAGES + 1 + work_rows(n), n))
+    for r in range(N_STAGES + 1, K.shape[0]):
+        for i in range(n):
+            K[r, i] = 0.0
     Q = np.empty((n, 4))
     g0 = np.empty(n_events)
     gd0 = np.empty(n_events)

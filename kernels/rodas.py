@@ -74,9 +74,10 @@ H3 = (-0.6762803392801253, 6.087714651680015, 16.43084320892478,
       24.76722511418386, -6.594389125716872)
 N_ROS = 6
 
-# work rows of K after the DP5 stages (hybrid allocates N_STAGES + 1 +
-# N_WORK_FIXED + 2 n rows): the LU of E (n rows), J (n rows), then these
+# work rows of K after the DP5 stages (``work_rows``): the LU of E (n rows),
+# J (n rows), then these
 R_E = N_STAGES + 1
+N_WORK = 7
 W_FT = 0          # df/dt
 W_FREF = 1        # f at the point of J
 W_PIV = 2         # row swaps of the LU
@@ -93,6 +94,12 @@ S_PAID = 1        # in row W_STATE + 3
 @jit
 def _row(n, w):
     return R_E + 2 * n + w
+
+
+@jit
+def work_rows(n):
+    """Rows of K that Rodas4 and ``auto_step`` keep after the DP5 stages."""
+    return 2 * n + N_WORK
 
 
 @jit_generic

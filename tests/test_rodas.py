@@ -9,7 +9,6 @@ from scipy.integrate import solve_ivp
 from fastrock.kernels import layout as L
 from fastrock.kernels import rodas as R
 from fastrock.kernels.dopri import N_STAGES, dense_eval
-from fastrock.kernels.hybrid import N_WORK_FIXED
 
 
 @njit
@@ -42,7 +41,7 @@ def _fixed_steps(step, dense, rhs, y0, t0, t1, n_steps, par, opt, x_dense):
     """n_steps equal steps of ``step``; returns the end state, the dense
     output at fraction x_dense of the last step, and the counters."""
     n = y0.shape[0]
-    K = np.zeros((N_STAGES + 1 + N_WORK_FIXED + 2 * n, n))
+    K = np.zeros((N_STAGES + 1 + R.work_rows(n), n))
     y = y0.copy()
     f = np.empty(n)
     ytmp = np.empty(n)

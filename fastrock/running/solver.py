@@ -94,8 +94,9 @@ class Solver:
 
     @property
     def name(self):
-        m = "" if self.method == "auto" else f"{self.method} "
-        return f"{m}fixed dt={self.dt:g}" if self.dt else f"{self.method if m else 'RK45'} rtol={self.rtol:g}"
+        if self.dt:
+            return ("" if self.method == "auto" else f"{self.method} ") + f"fixed dt={self.dt:g}"
+        return f"{'RK45' if self.method == 'auto' else self.method} rtol={self.rtol:g}"
 
     def options(self, t_end, early_exit, t0=0.0):
         opt = np.zeros(L.N_OPT)
