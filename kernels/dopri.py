@@ -102,7 +102,8 @@ def rk_step(rhs, t, y, f, h, K, ytmp, fs, y_new, par, disc, hdr, smp):
 
 @jit
 def error_norm(K, h, y, y_new, rtol, atol, work):
-    """rk.py 105-109 and 146-147: scaled RMS norm of the embedded error."""
+    """rk.py 105-109 and 146-147: scaled RMS norm of the embedded error
+    (``atol``: one absolute tolerance per component)."""
     n = y.shape[0]
     s = 0.0
     for i in range(n):
@@ -110,7 +111,7 @@ def error_norm(K, h, y, y_new, rtol, atol, work):
         for j in range(N_STAGES + 1):
             err += K[j, i] * E[j]
         err *= h
-        sc = atol + max(abs(y[i]), abs(y_new[i])) * rtol
+        sc = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
         r = err / sc
         s += r * r
     return np.sqrt(s / n)
@@ -142,7 +143,7 @@ def select_initial_step(rhs, t0, y0, t_bound, max_step, f0, rtol, atol,
     d0 = 0.0
     d1 = 0.0
     for i in range(n):
-        sc = atol + abs(y0[i]) * rtol
+        sc = atol[i] + abs(y0[i]) * rtol
         d0 += (y0[i] / sc) ** 2
         d1 += (f0[i] / sc) ** 2
     d0 = np.sqrt(d0 / n)
@@ -157,7 +158,7 @@ def select_initial_step(rhs, t0, y0, t_bound, max_step, f0, rtol, atol,
     rhs(t0 + h0, ytmp, par, disc, hdr, smp, ftmp)
     d2 = 0.0
     for i in range(n):
-        sc = atol + abs(y0[i]) * rtol
+        sc = atol[i] + abs(y0[i]) * rtol
         d2 += ((ftmp[i] - f0[i]) / sc) ** 2
     d2 = np.sqrt(d2 / n) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
@@ -204,7 +205,7 @@ def fixed_step_error(K, h, y_new, y_scale, atol):
         err = 0.0
         for j in range(N_STAGES + 1):
             err += K[j, i] * E[j]
-        r = abs(err * h) / (atol + max(y_scale[i], abs(y_new[i])))
+        r = abs(err * h) / (atol[i] + max(y_scale[i], abs(y_new[i])))
         if not r <= worst:
             worst = r
     return worst
@@ -218,7 +219,7 @@ def fixed_step_error(K, h, y_new, y_scale, atol):
 
 @jit_generic
 def dopri_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
-               opt, par, disc, hdr, smp, met):
+               atol, opt, par, disc, hdr, smp, met):
     """One DP5 step from (t, y) with f = f(t, y): fills y_new and K (row
     N_STAGES: f(t + h, y_new), the next step's f).  Returns the scaled RMS
     norm of the embedded error and the step-size exponent (adaptive), or
@@ -226,8 +227,8 @@ def dopri_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
     rk_step(rhs, t, y, f, h, K, ytmp, ftmp, y_new, par, disc, hdr, smp)
     met[M_NFEV] += 6
     if fixed:
-        return fixed_step_error(K, h, y_new, y_scale, opt[O_ATOL]), ERR_FIXED_MAX
-    return error_norm(K, h, y, y_new, opt[O_RTOL], opt[O_ATOL], ytmp), ERROR_EXPONENT
+        return fixed_step_error(K, h, y_new, y_scale, atol), ERR_FIXED_MAX
+    return error_norm(K, h, y, y_new, opt[O_RTOL], atol, ytmp), ERROR_EXPONENT
 
 
 @jit

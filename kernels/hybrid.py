@@ -382,6 +382,16 @@ def _all_finite(y):
 
 
 @jit
+def uniform_atol(opt, par, n):
+    """O_ATOL for each of the n state components (the ``atol_of`` of
+    ``integrate_with`` for states measured in rad and m)."""
+    atol = np.empty(n)
+    for i in range(n):
+        atol[i] = opt[O_ATOL]
+    return atol
+
+
+@jit
 def _any_nonzero(y):
     for i in range(y.shape[0]):
         if y[i] != 0.0:
@@ -401,23 +411,25 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
     has room, every accepted step and every event is stored.  Returns the
     run status (layout codes).
     """
-    return integrate_with(dopri_step, dopri_dense, dopri_work_rows, rhs,
-                          event, transition, static_margin, after_step,
+    return integrate_with(dopri_step, dopri_dense, dopri_work_rows,
+                          uniform_atol, rhs, event, transition, static_margin,
+                          after_step,
                           n_events, y, par, disc, hdr, smp, opt, t_eval, met,
                           hist_t, hist_y, hist_d, log, cnt)
 
 
 @jit_generic
-def integrate_with(step, dense, work_rows, rhs, event, transition,
+def integrate_with(step, dense, work_rows, atol_of, rhs, event, transition,
                    static_margin, after_step, n_events, y, par, disc, hdr,
                    smp, opt, t_eval, met, hist_t, hist_y, hist_d, log, cnt):
     """``integrate_hybrid`` with the integration method as three functions
     (``dopri.dopri_step`` / ``dopri_dense`` / ``dopri_work_rows`` have the
-    contract):
+    contract) and the model's absolute tolerances as a fourth:
 
     ``step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
-    opt, par, disc, hdr, smp, met) -> (err, exponent)``
-        one step of size h from (t, y), f = f(t, y); fills y_new and leaves
+    atol, opt, par, disc, hdr, smp, met) -> (err, exponent)``
+        one step of size h from (t, y), f = f(t, y) (``atol``: the absolute
+        tolerance of each component, from ``atol_of``); fills y_new and leaves
         f(t + h, y_new) in ``K[N_STAGES]``; counts its evaluations in
         met[M_NFEV].  ``fresh``: the first try from this (t, y) (a rejected
         try repeats the point with a smaller h).  Adaptive: ``err`` is the
@@ -431,12 +443,16 @@ def integrate_with(step, dense, work_rows, rhs, event, transition,
     ``work_rows(n) -> int``
         rows of K the method keeps after the N_STAGES + 1 stage rows (its
         work arrays and state between steps), zeroed at the start of a run.
+    ``atol_of(opt, par, n) -> atol``
+        the absolute tolerance of each state component: ``uniform_atol``
+        (O_ATOL) for states in rad and m, a model's own where a component
+        has a scale of its own (``foundation.spring_atol``).
     """
     n = y.shape[0]
     t = opt[O_T0]
     t_end = opt[O_T_END]
     rtol = opt[O_RTOL]
-    atol = opt[O_ATOL]
+    atol = atol_of(opt, par, n)
     dt_fixed = opt[O_DT_FIXED]
     max_step = opt[O_MAX_STEP]
     max_steps = opt[O_MAX_STEPS]
@@ -563,8 +579,8 @@ def integrate_with(step, dense, work_rows, rhs, event, transition,
                     t_new = t_bound
                 h = t_new - t
                 err, err_max = step(rhs, t, y, f, h, True, True, K, ytmp,
-                                    ftmp, y_new, y_scale, opt, par, disc, hdr,
-                                    smp, met)
+                                    ftmp, y_new, y_scale, atol, opt, par,
+                                    disc, hdr, smp, met)
                 steps_taken += 1.0
                 if not err <= met[M_ERR_FIXED]:
                     met[M_ERR_FIXED] = err
@@ -606,8 +622,8 @@ def integrate_with(step, dense, work_rows, rhs, event, transition,
                     h = t_new - t
                     h_abs = abs(h)
                     err, expo = step(rhs, t, y, f, h, not rejected, False, K,
-                                     ytmp, ftmp, y_new, y_scale, opt, par,
-                                     disc, hdr, smp, met)
+                                     ytmp, ftmp, y_new, y_scale, atol, opt,
+                                     par, disc, hdr, smp, met)
                     steps_taken += 1.0
                     if not np.isfinite(err):
                         err = np.inf

@@ -38,7 +38,7 @@ import numpy as np
 from .config import jit, jit_generic, next_up
 from .dopri import ERR_FIXED_MAX, N_STAGES, dopri_dense, dopri_step
 from .hybrid import EPS, _all_finite
-from .layout import (M_NFEV, METHOD_DOPRI, METHOD_RODAS, O_ATOL, O_METHOD,
+from .layout import (M_NFEV, METHOD_DOPRI, METHOD_RODAS, O_METHOD,
                      O_RTOL)
 
 GAMMA = 0.25
@@ -202,7 +202,7 @@ def solve(K, n, s):
 
 @jit_generic
 def rodas_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
-               opt, par, disc, hdr, smp, met):
+               atol, opt, par, disc, hdr, smp, met):
     """One Rodas4 step (the ``step`` contract of ``hybrid.integrate_with``).
     The error estimate is the last stage k6 (y_new minus the embedded
     solution)."""
@@ -239,18 +239,17 @@ def rodas_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
     for i in range(n):
         K[N_STAGES, i] = ftmp[i]
     met[M_NFEV] += N_ROS
-    atol = opt[O_ATOL]
     if fixed:
         worst = 0.0
         for i in range(n):
-            r = abs(K[last, i]) / (atol + max(y_scale[i], abs(y_new[i])))
+            r = abs(K[last, i]) / (atol[i] + max(y_scale[i], abs(y_new[i])))
             if not r <= worst:
                 worst = r
         return worst, np.inf       # L-stable: no step size is unstable
     rtol = opt[O_RTOL]
     acc = 0.0
     for i in range(n):
-        r = K[last, i] / (atol + max(abs(y[i]), abs(y_new[i])) * rtol)
+        r = K[last, i] / (atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol)
         acc += r * r
     return np.sqrt(acc / n), EXPONENT
 
@@ -314,7 +313,7 @@ def _rho_bound(K, n, v, w):
 
 @jit_generic
 def auto_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
-              opt, par, disc, hdr, smp, met):
+              atol, opt, par, disc, hdr, smp, met):
     """DP5 until the problem is stiff, then Rodas4 (module docstring)."""
     n = y.shape[0]
     r_s = _row(n, W_STATE)
@@ -325,7 +324,7 @@ def auto_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
                                        K[r_s, S_STIFF] != 0.0)
     if not stiff:
         err, expo = dopri_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp,
-                               y_new, y_scale, opt, par, disc, hdr, smp, met)
+                               y_new, y_scale, atol, opt, par, disc, hdr, smp, met)
         K[r_s + 1, S_LAST] = 0.0
         if method == METHOD_DOPRI:
             return err, expo
@@ -351,7 +350,7 @@ def auto_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
                         K[r_s, S_COUNT] = 0.0
             return err, expo
     err, expo = rodas_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp,
-                           y_new, y_scale, opt, par, disc, hdr, smp, met)
+                           y_new, y_scale, atol, opt, par, disc, hdr, smp, met)
     K[r_s + 1, S_LAST] = 1.0
     if method != METHOD_RODAS and not fixed and err < 1.0:
         # Rodas4 pays where its step beats DP5's stability-bound one,

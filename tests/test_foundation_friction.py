@@ -247,14 +247,19 @@ def test_a_slip_that_starts_as_its_corner_lifts_runs_on():
     """A found case (a random pulse run): rocking on its left corner, the block starts to slip
     when that corner carries 4e-5 N, 7e-7 s before the corner lifts.  The slip starts at d' = 0
     toward sigma with sigma d'' > 0; the step's end beyond the lift-off once made the stop event
-    read as 'on the surface' at once, and the run failed with a transition loop."""
+    read as 'on the surface' at once, and the run failed with a transition loop.  The springs are
+    undamped, so the block rocks on them to the end of the run (about 200 impacts): whether
+    the last instant is in full contact ("safe:rest") or on one corner ("safe:moving") is not
+    converged (198 to 207 impacts, either end, between rtol 1e-7 and 1e-12), only that it is
+    safe."""
     blk = RigidBlock.rectangle(b=0.15227369832291068, h=0.3731360800043914)
     fnd = TwoSpringFoundation.from_vibration(blk, 91.57531288602313, 0.0)
     exc = Pulse(3.4147800850072367, 3.289655568703106, amplitude_unit="g_tan_alpha", frequency_unit="omega_p/p")
     r = fr.simulate(blk, exc, foundation=fnd, friction=Friction(0.3057820846897209, 0.19973847518528975))
-    assert r.status_code >= 0 and r.status == "safe:rest"
+    assert r.status_code >= 0 and r.status in ("safe:rest", "safe:moving")
     ev = list(r.events["event"])
     assert any(a == "slip" and b == "flight" for a, b in zip(ev, ev[1:]))
+    assert ev.count("impact") > 150
 
 
 def test_in_flight_the_block_is_free_horizontally_too():

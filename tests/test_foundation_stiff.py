@@ -141,3 +141,47 @@ def test_the_spectrum_of_a_stiff_foundation_keeps_its_outcomes():
     a = fr.overturning_spectrum(body, **kw)
     b = fr.overturning_spectrum(body, solver=fr.Solver(rtol=1e-10, method="RK45"), **kw)
     assert list(a["outcome"]) == list(b["outcome"])
+
+
+def _grazing_lift_off():
+    # foundation:2027:109: a slender block (b/h = 0.0127) on springs with a 2e-8 m static deflection
+    body = fr.RigidBlock.rectangle(b=0.0007735112837389468, h=0.060891575164387146)
+    fnd = TwoSpringFoundation(k_v=24480071658.761642, c_v=15651222.071522184)
+    pulse = fr.Pulse(32.06156336303051, 0.144828332337818, 1, "half-sine", amplitude_unit="g_tan_alpha",
+                     frequency_unit="omega_p/p")
+    return body, fnd, pulse, 57.131286380556205
+
+
+def test_the_springs_tolerances_resolve_the_corner_forces():
+    """y_c and y_c' have absolute tolerances that resolve k_v y_c and c_v
+    y_c' to rtol M g; the rotation keeps atol."""
+    from fastrock.kernels import foundation as F
+    from fastrock.kernels import layout as L
+    body, fnd, _p, mass = _grazing_lift_off()
+    par = np.zeros(L.N_PAR_FOUNDATION)
+    par[F.P_MASS], par[F.P_G], par[F.P_KV], par[F.P_CV] = mass, 9.80665, fnd.k_v, fnd.c_v
+    opt = fr.Solver(rtol=1e-7).options(1.0, False)
+    atol = F.spring_atol(opt, par, 4)
+    Mg = mass * 9.80665
+    assert fnd.k_v * atol[0] == pytest.approx(1e-7 * Mg)
+    assert fnd.c_v * atol[1] == pytest.approx(1e-7 * Mg)        # c_v > sqrt(k_v M) here
+    assert list(atol[2:]) == [1e-9, 1e-9]
+    par[F.P_KV], par[F.P_CV] = 1e3, 0.0                         # soft springs: atol itself
+    assert list(F.spring_atol(opt, par, 4)) == [1e-9] * 4
+
+
+def test_a_grazing_lift_off_does_not_chatter():
+    """At rtol 1.6e-7 the pivot corner's force of foundation:2027:109 grazes
+    0 while the block falls (theta = 70 alpha).  With atol in m the corner
+    touched and left again at every step, 1e-11 s apart, until the step
+    budget ran out; now every method lifts off once and overturns at one
+    time."""
+    body, fnd, pulse, mass = _grazing_lift_off()
+    runs = {m: fr.simulate(body, pulse, foundation=fnd, mass=mass, t_after=10.0, history_capacity=10,
+                           solver=fr.Solver(rtol=1.5869936196274667e-07, method=m, max_steps=100_000))
+            for m in ("auto", "RK45", "Rodas4")}
+    for m, r in runs.items():
+        assert r.status == "overturn:mode2", m
+        assert (r.events.event == "flight").sum() == 1, m
+        assert r.metrics["time_overturn"] == pytest.approx(runs["RK45"].metrics["time_overturn"], abs=1e-6), m
+    assert runs["auto"].metrics["steps"] < 2000

@@ -60,7 +60,7 @@ def _fixed_steps(step, dense, rhs, y0, t0, t1, n_steps, par, opt, x_dense):
     for k in range(n_steps):
         rhs(t, y, par, disc, hdr, smp, f)
         err, _e = step(rhs, t, y, f, h, True, True, K, ytmp, ftmp, y_new,
-                       y_scale, opt, par, disc, hdr, smp, met)
+                       y_scale, np.full(n, opt[L.O_ATOL]), opt, par, disc, hdr, smp, met)
         worst = max(worst, err)
         dense(K, h, y, y_new, Q)
         dense_eval(t + x_dense * h, t, h, y, Q, yd)
