@@ -9,7 +9,7 @@ and is inlined into each entry kernel.
 import numpy as np
 
 from .config import jit, jit_generic
-from .layout import M_NFEV, O_ATOL, O_RTOL
+from .layout import M_NFEV
 
 # rk.py lines 8-11
 SAFETY = 0.9
@@ -103,7 +103,7 @@ def rk_step(rhs, t, y, f, h, K, ytmp, fs, y_new, par, disc, hdr, smp):
 @jit
 def error_norm(K, h, y, y_new, rtol, atol, work):
     """rk.py 105-109 and 146-147: scaled RMS norm of the embedded error
-    (``atol``: one absolute tolerance per component)."""
+    (``rtol``, ``atol``: the tolerances of each component)."""
     n = y.shape[0]
     s = 0.0
     for i in range(n):
@@ -111,7 +111,7 @@ def error_norm(K, h, y, y_new, rtol, atol, work):
         for j in range(N_STAGES + 1):
             err += K[j, i] * E[j]
         err *= h
-        sc = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
+        sc = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol[i]
         r = err / sc
         s += r * r
     return np.sqrt(s / n)
@@ -143,7 +143,7 @@ def select_initial_step(rhs, t0, y0, t_bound, max_step, f0, rtol, atol,
     d0 = 0.0
     d1 = 0.0
     for i in range(n):
-        sc = atol[i] + abs(y0[i]) * rtol
+        sc = atol[i] + abs(y0[i]) * rtol[i]
         d0 += (y0[i] / sc) ** 2
         d1 += (f0[i] / sc) ** 2
     d0 = np.sqrt(d0 / n)
@@ -158,7 +158,7 @@ def select_initial_step(rhs, t0, y0, t_bound, max_step, f0, rtol, atol,
     rhs(t0 + h0, ytmp, par, disc, hdr, smp, ftmp)
     d2 = 0.0
     for i in range(n):
-        sc = atol[i] + abs(y0[i]) * rtol
+        sc = atol[i] + abs(y0[i]) * rtol[i]
         d2 += ((ftmp[i] - f0[i]) / sc) ** 2
     d2 = np.sqrt(d2 / n) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
@@ -219,7 +219,7 @@ def fixed_step_error(K, h, y_new, y_scale, atol):
 
 @jit_generic
 def dopri_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
-               atol, opt, par, disc, hdr, smp, met):
+               tol, opt, par, disc, hdr, smp, met):
     """One DP5 step from (t, y) with f = f(t, y): fills y_new and K (row
     N_STAGES: f(t + h, y_new), the next step's f).  Returns the scaled RMS
     norm of the embedded error and the step-size exponent (adaptive), or
@@ -227,8 +227,8 @@ def dopri_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
     rk_step(rhs, t, y, f, h, K, ytmp, ftmp, y_new, par, disc, hdr, smp)
     met[M_NFEV] += 6
     if fixed:
-        return fixed_step_error(K, h, y_new, y_scale, atol), ERR_FIXED_MAX
-    return error_norm(K, h, y, y_new, opt[O_RTOL], atol, ytmp), ERROR_EXPONENT
+        return fixed_step_error(K, h, y_new, y_scale, tol[0]), ERR_FIXED_MAX
+    return error_norm(K, h, y, y_new, tol[1], tol[0], ytmp), ERROR_EXPONENT
 
 
 @jit

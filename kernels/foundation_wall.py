@@ -71,7 +71,7 @@ from .excitation import excitation_end, ground_rates
 from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT,
                          TS_IQ, TS_N_EVENTS, TS_REST, corner_arm,
                          ts_corner_transition, corner_compression,
-                         corner_force, side_alpha, spring_atol, ts_accelerations,
+                         corner_force, side_alpha, spring_tol, ts_accelerations,
                          ts_after_step, ts_event, ts_force_rate,
                          ts_init_state, ts_kinetic, ts_loads, ts_set_mode,
                          ts_shared_event, ts_shared_transition, ts_transition,
@@ -79,7 +79,7 @@ from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT,
 from .rodas import auto_dense, auto_step, work_rows
 from .hybrid import (EPS, book_time, check_energy, elastic_below_resolution,
                      integrate_with, is_chatter, log_event, sweep_rows,
-                     uniform_atol)
+                     uniform_tol)
 from .layout import (D_MODE, D_PIVOT, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
                      LEANING, MODE_ROCK, MODE_WALL_REST, M_WALL_IMPACTS,
                      N_DISC, O_EARLY_EXIT, O_T0, RUNNING, S_ON, SAFE_REST)
@@ -311,7 +311,7 @@ def two_spring_wall_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                         hist_d, log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     ts_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_with(auto_step, auto_dense, work_rows, spring_atol,
+    return integrate_with(auto_step, auto_dense, work_rows, spring_tol,
                           fw_rhs, fw_event, fw_transition, never_static,
                           fw_after_step, FW_N_EVENTS, y, par, disc, hdr,
                           smp, opt, t_eval, met, hist_t, hist_y, hist_d,
@@ -376,7 +376,7 @@ def switching_wall_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                        hist_d, log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
     sw_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
-    return integrate_with(auto_step, auto_dense, work_rows, uniform_atol,
+    return integrate_with(auto_step, auto_dense, work_rows, uniform_tol,
                           sw_rhs, sww_event, sww_transition,
                           sww_static_margin, sww_after_step, SWW_N_EVENTS,
                           y, par, disc, hdr, smp, opt, t_eval, met, hist_t,

@@ -382,13 +382,14 @@ def _all_finite(y):
 
 
 @jit
-def uniform_atol(opt, par, n):
-    """O_ATOL for each of the n state components (the ``atol_of`` of
-    ``integrate_with`` for states measured in rad and m)."""
-    atol = np.empty(n)
+def uniform_tol(opt, par, n):
+    """O_ATOL and O_RTOL for each of the n state components (the
+    ``tol_of`` of ``integrate_with`` for states measured in rad and m)."""
+    tol = np.empty((2, n))
     for i in range(n):
-        atol[i] = opt[O_ATOL]
-    return atol
+        tol[0, i] = opt[O_ATOL]
+        tol[1, i] = opt[O_RTOL]
+    return tol
 
 
 @jit
@@ -412,14 +413,14 @@ def integrate_hybrid(rhs, event, transition, static_margin, after_step,
     run status (layout codes).
     """
     return integrate_with(dopri_step, dopri_dense, dopri_work_rows,
-                          uniform_atol, rhs, event, transition, static_margin,
+                          uniform_tol, rhs, event, transition, static_margin,
                           after_step,
                           n_events, y, par, disc, hdr, smp, opt, t_eval, met,
                           hist_t, hist_y, hist_d, log, cnt)
 
 
 @jit_generic
-def integrate_with(step, dense, work_rows, atol_of, rhs, event, transition,
+def integrate_with(step, dense, work_rows, tol_of, rhs, event, transition,
                    static_margin, after_step, n_events, y, par, disc, hdr,
                    smp, opt, t_eval, met, hist_t, hist_y, hist_d, log, cnt):
     """``integrate_hybrid`` with the integration method as three functions
@@ -427,9 +428,10 @@ def integrate_with(step, dense, work_rows, atol_of, rhs, event, transition,
     contract) and the model's absolute tolerances as a fourth:
 
     ``step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
-    atol, opt, par, disc, hdr, smp, met) -> (err, exponent)``
-        one step of size h from (t, y), f = f(t, y) (``atol``: the absolute
-        tolerance of each component, from ``atol_of``); fills y_new and leaves
+    tol, opt, par, disc, hdr, smp, met) -> (err, exponent)``
+        one step of size h from (t, y), f = f(t, y) (``tol``: the absolute
+        and relative tolerance of each component, rows 0 and 1, from
+        ``tol_of``); fills y_new and leaves
         f(t + h, y_new) in ``K[N_STAGES]``; counts its evaluations in
         met[M_NFEV].  ``fresh``: the first try from this (t, y) (a rejected
         try repeats the point with a smaller h).  Adaptive: ``err`` is the
@@ -443,16 +445,16 @@ def integrate_with(step, dense, work_rows, atol_of, rhs, event, transition,
     ``work_rows(n) -> int``
         rows of K the method keeps after the N_STAGES + 1 stage rows (its
         work arrays and state between steps), zeroed at the start of a run.
-    ``atol_of(opt, par, n) -> atol``
-        the absolute tolerance of each state component: ``uniform_atol``
-        (O_ATOL) for states in rad and m, a model's own where a component
-        has a scale of its own (``foundation.spring_atol``).
+    ``tol_of(opt, par, n) -> tol``
+        the absolute and relative tolerance of each state component (a
+        2 x n array): ``uniform_tol`` (O_ATOL, O_RTOL) for states in rad
+        and m, a model's own where a component has a scale of its own
+        (``foundation.spring_tol``).
     """
     n = y.shape[0]
     t = opt[O_T0]
     t_end = opt[O_T_END]
-    rtol = opt[O_RTOL]
-    atol = atol_of(opt, par, n)
+    tol = tol_of(opt, par, n)
     dt_fixed = opt[O_DT_FIXED]
     max_step = opt[O_MAX_STEP]
     max_steps = opt[O_MAX_STEPS]
@@ -557,8 +559,9 @@ def integrate_with(step, dense, work_rows, atol_of, rhs, event, transition,
         if dt_fixed > 0.0:
             h_abs = dt_fixed
         elif h_abs == 0.0:
-            h_abs = select_initial_step(rhs, t, y, t_bound, max_step, f, rtol,
-                                        atol, ytmp, ftmp, par, disc, hdr, smp)
+            h_abs = select_initial_step(rhs, t, y, t_bound, max_step, f,
+                                        tol[1], tol[0], ytmp, ftmp, par, disc,
+                                        hdr, smp)
             met[M_NFEV] += 1
         for k in range(n_events):
             g0[k], gd0[k], term[k] = event(k, t, y, par, disc, hdr, smp)
@@ -579,7 +582,7 @@ def integrate_with(step, dense, work_rows, atol_of, rhs, event, transition,
                     t_new = t_bound
                 h = t_new - t
                 err, err_max = step(rhs, t, y, f, h, True, True, K, ytmp,
-                                    ftmp, y_new, y_scale, atol, opt, par,
+                                    ftmp, y_new, y_scale, tol, opt, par,
                                     disc, hdr, smp, met)
                 steps_taken += 1.0
                 if not err <= met[M_ERR_FIXED]:
@@ -622,7 +625,7 @@ def integrate_with(step, dense, work_rows, atol_of, rhs, event, transition,
                     h = t_new - t
                     h_abs = abs(h)
                     err, expo = step(rhs, t, y, f, h, not rejected, False, K,
-                                     ytmp, ftmp, y_new, y_scale, atol, opt,
+                                     ytmp, ftmp, y_new, y_scale, tol, opt,
                                      par, disc, hdr, smp, met)
                     steps_taken += 1.0
                     if not np.isfinite(err):

@@ -38,8 +38,7 @@ import numpy as np
 from .config import jit, jit_generic, next_up
 from .dopri import ERR_FIXED_MAX, N_STAGES, dopri_dense, dopri_step
 from .hybrid import EPS, _all_finite
-from .layout import (M_NFEV, METHOD_DOPRI, METHOD_RODAS, O_METHOD,
-                     O_RTOL)
+from .layout import M_NFEV, METHOD_DOPRI, METHOD_RODAS, O_METHOD
 
 GAMMA = 0.25
 EXPONENT = -0.25             # error estimate of order 3: -1/(3 + 1)
@@ -202,7 +201,7 @@ def solve(K, n, s):
 
 @jit_generic
 def rodas_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
-               atol, opt, par, disc, hdr, smp, met):
+               tol, opt, par, disc, hdr, smp, met):
     """One Rodas4 step (the ``step`` contract of ``hybrid.integrate_with``).
     The error estimate is the last stage k6 (y_new minus the embedded
     solution)."""
@@ -242,14 +241,13 @@ def rodas_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
     if fixed:
         worst = 0.0
         for i in range(n):
-            r = abs(K[last, i]) / (atol[i] + max(y_scale[i], abs(y_new[i])))
+            r = abs(K[last, i]) / (tol[0, i] + max(y_scale[i], abs(y_new[i])))
             if not r <= worst:
                 worst = r
         return worst, np.inf       # L-stable: no step size is unstable
-    rtol = opt[O_RTOL]
     acc = 0.0
     for i in range(n):
-        r = K[last, i] / (atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol)
+        r = K[last, i] / (tol[0, i] + max(abs(y[i]), abs(y_new[i])) * tol[1, i])
         acc += r * r
     return np.sqrt(acc / n), EXPONENT
 
@@ -313,7 +311,7 @@ def _rho_bound(K, n, v, w):
 
 @jit_generic
 def auto_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
-              atol, opt, par, disc, hdr, smp, met):
+              tol, opt, par, disc, hdr, smp, met):
     """DP5 until the problem is stiff, then Rodas4 (module docstring)."""
     n = y.shape[0]
     r_s = _row(n, W_STATE)
@@ -324,7 +322,7 @@ def auto_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
                                        K[r_s, S_STIFF] != 0.0)
     if not stiff:
         err, expo = dopri_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp,
-                               y_new, y_scale, atol, opt, par, disc, hdr, smp, met)
+                               y_new, y_scale, tol, opt, par, disc, hdr, smp, met)
         K[r_s + 1, S_LAST] = 0.0
         if method == METHOD_DOPRI:
             return err, expo
@@ -350,7 +348,7 @@ def auto_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
                         K[r_s, S_COUNT] = 0.0
             return err, expo
     err, expo = rodas_step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp,
-                           y_new, y_scale, atol, opt, par, disc, hdr, smp, met)
+                           y_new, y_scale, tol, opt, par, disc, hdr, smp, met)
     K[r_s + 1, S_LAST] = 1.0
     if method != METHOD_RODAS and not fixed and err < 1.0:
         # Rodas4 pays where its step beats DP5's stability-bound one,

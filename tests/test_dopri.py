@@ -267,7 +267,7 @@ def test_kernel_helpers_on_scipy_stages(sequential_scipy):
         err_terms = [K[:, r] * RK45.E * h / scale[r] for r in range(2)]
         ref = math.sqrt(sum(math.fsum(t) ** 2 for t in err_terms) / 2)
         bound = 8 * EPS * math.sqrt(sum(np.abs(t).sum() ** 2 for t in err_terms))
-        got = D.error_norm(K, h, y_old, y_new, rtol, np.full(2, atol), work)
+        got = D.error_norm(K, h, y_old, y_new, np.full(2, rtol), np.full(2, atol), work)
         assert abs(got - ref) <= bound + 4 * EPS * ref, f"Step: {i}"
         i += 1
     assert i > 5

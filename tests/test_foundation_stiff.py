@@ -153,21 +153,23 @@ def _grazing_lift_off():
 
 
 def test_the_springs_tolerances_resolve_the_corner_forces():
-    """y_c and y_c' have absolute tolerances that resolve k_v y_c and c_v
-    y_c' to rtol M g; the rotation keeps atol."""
+    """y_c and y_c' have absolute tolerances, with no relative part, that
+    resolve k_v y_c and c_v y_c' to rtol M g; the rotation keeps atol and
+    rtol."""
     from fastrock.kernels import foundation as F
     from fastrock.kernels import layout as L
     body, fnd, _p, mass = _grazing_lift_off()
     par = np.zeros(L.N_PAR_FOUNDATION)
     par[F.P_MASS], par[F.P_G], par[F.P_KV], par[F.P_CV] = mass, 9.80665, fnd.k_v, fnd.c_v
     opt = fr.Solver(rtol=1e-7).options(1.0, False)
-    atol = F.spring_atol(opt, par, 4)
+    atol, rtol = F.spring_tol(opt, par, 4)
     Mg = mass * 9.80665
     assert fnd.k_v * atol[0] == pytest.approx(1e-7 * Mg)
     assert fnd.c_v * atol[1] == pytest.approx(1e-7 * Mg)        # c_v > sqrt(k_v M) here
     assert list(atol[2:]) == [1e-9, 1e-9]
+    assert list(rtol) == [0.0, 0.0, 1e-7, 1e-7]
     par[F.P_KV], par[F.P_CV] = 1e3, 0.0                         # soft springs: atol itself
-    assert list(F.spring_atol(opt, par, 4)) == [1e-9] * 4
+    assert list(F.spring_tol(opt, par, 4)[0]) == [1e-9] * 4
 
 
 def test_a_grazing_lift_off_does_not_chatter():
@@ -175,7 +177,8 @@ def test_a_grazing_lift_off_does_not_chatter():
     0 while the block falls (theta = 70 alpha).  With atol in m the corner
     touched and left again at every step, 1e-11 s apart, until the step
     budget ran out; now every method lifts off once and overturns at one
-    time."""
+    time.  (foundation_wall:2027:356 was the same with rtol |y_c| in place
+    of atol: a tall block whose y_c carries 0.24 m of rocking.)"""
     body, fnd, pulse, mass = _grazing_lift_off()
     runs = {m: fr.simulate(body, pulse, foundation=fnd, mass=mass, t_after=10.0, history_capacity=10,
                            solver=fr.Solver(rtol=1.5869936196274667e-07, method=m, max_steps=100_000))
@@ -184,4 +187,4 @@ def test_a_grazing_lift_off_does_not_chatter():
         assert r.status == "overturn:mode2", m
         assert (r.events.event == "flight").sum() == 1, m
         assert r.metrics["time_overturn"] == pytest.approx(runs["RK45"].metrics["time_overturn"], abs=1e-6), m
-    assert runs["auto"].metrics["steps"] < 2000
+    assert runs["auto"].metrics["steps"] < runs["RK45"].metrics["steps"]

@@ -54,13 +54,16 @@ def _fixed_steps(step, dense, rhs, y0, t0, t1, n_steps, par, opt, x_dense):
     disc = np.zeros(3, dtype=np.int64)
     hdr = np.zeros(1)
     smp = np.zeros(1)
+    tol = np.empty((2, n))
+    tol[0, :] = opt[L.O_ATOL]
+    tol[1, :] = opt[L.O_RTOL]
     h = (t1 - t0) / n_steps
     t = t0
     worst = 0.0
     for k in range(n_steps):
         rhs(t, y, par, disc, hdr, smp, f)
         err, _e = step(rhs, t, y, f, h, True, True, K, ytmp, ftmp, y_new,
-                       y_scale, np.full(n, opt[L.O_ATOL]), opt, par, disc, hdr, smp, met)
+                       y_scale, tol, opt, par, disc, hdr, smp, met)
         worst = max(worst, err)
         dense(K, h, y, y_new, Q)
         dense_eval(t + x_dense * h, t, h, y, Q, yd)

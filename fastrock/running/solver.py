@@ -25,10 +25,10 @@ class Solver:
         Tolerances of the adaptive Dormand-Prince 5(4) integrator (SciPy's
         RK45 error control).  ``atol`` defaults to ``rtol * 1e-2`` (state in
         rad and rad/s).  On the two-spring foundation the base's vertical
-        displacement y_c and velocity y_c' have their own, at most
-        ``rtol M g / k_v`` and ``rtol M g / max(c_v, sqrt(k_v M))``, so that
-        the corner forces are resolved to ``rtol M g`` (a stiff spring's
-        deflection is far below any tolerance in m).
+        displacement y_c and velocity y_c' are held to absolute errors of
+        ``rtol M g / k_v`` and ``rtol M g / max(c_v, sqrt(k_v M))`` (or
+        ``atol`` if smaller), with no relative part, so that the corner
+        forces are resolved to ``rtol M g`` (docs: theory/numerics).
     dt : float, optional
         Fixed step [s]; switches to fixed-step DP5 (events are still located
         on the dense output).
