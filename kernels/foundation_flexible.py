@@ -67,7 +67,7 @@ from .excitation import ground
 from .flexible import track_u
 from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT,
                          TS_CROSS, TS_LEFT, TS_OVERTURN, TS_PASS_ALPHA,
-                         TS_PEAK, TS_RIGHT, corner_arm, corner_force, spring_tol,
+                         TS_PEAK, TS_RIGHT, corner_arm, corner_force, spring_par, spring_tol,
                          never_static, ts_init_corners, ts_shared_event,
                          ts_shared_transition, within_tolerance)
 from .rodas import auto_dense, auto_step, work_rows
@@ -295,6 +295,7 @@ def ff_init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
 def ff_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y, hist_d, log,
            cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
+    par = spring_par(par, opt)
     ff_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
     return integrate_with(auto_step, auto_dense, work_rows, spring_tol,
                           ff_rhs, ff_event, ff_transition, never_static,

@@ -63,7 +63,7 @@ from .config import jit, jit_parallel
 from .excitation import ground
 from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT, TS_IQ,
                          TS_LEFT, TS_N_EVENTS, TS_REST, TS_RIGHT,
-                         corner_force, never_static, spring_tol, ts_accelerations,
+                         corner_force, never_static, spring_par, spring_tol, ts_accelerations,
                          ts_at_rest, ts_energy_above_rest, ts_event,
                          ts_init_corners, ts_never_lifts, ts_set_mode,
                          ts_set_rest, ts_shared_event, ts_shared_transition,
@@ -372,6 +372,7 @@ def ff_init_state(t0, y, par, disc, hdr, smp, met, log, cnt):
 def two_spring_friction_run(y, par, hdr, smp, opt, t_eval, met, hist_t,
                             hist_y, hist_d, log, cnt):
     disc = np.zeros(N_DISC_FF, dtype=np.int64)
+    par = spring_par(par, opt)
     ff_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
     return integrate_with(auto_step, auto_dense, work_rows, spring_tol,
                           ff_rhs, ff_event, ff_transition, never_static,

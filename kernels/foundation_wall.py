@@ -71,7 +71,7 @@ from .excitation import excitation_end, ground_rates
 from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT,
                          TS_IQ, TS_N_EVENTS, TS_REST, corner_arm,
                          ts_corner_transition, corner_compression,
-                         corner_force, side_alpha, spring_tol, ts_accelerations,
+                         corner_force, side_alpha, spring_par, spring_tol, ts_accelerations,
                          ts_after_step, ts_event, ts_force_rate,
                          ts_init_state, ts_kinetic, ts_loads, ts_set_mode,
                          ts_shared_event, ts_shared_transition, ts_transition,
@@ -310,6 +310,7 @@ def fw_after_step(t, y, par, disc, hdr, smp, opt, met, at_end):
 def two_spring_wall_run(y, par, hdr, smp, opt, t_eval, met, hist_t, hist_y,
                         hist_d, log, cnt):
     disc = np.zeros(N_DISC, dtype=np.int64)
+    par = spring_par(par, opt)
     ts_init_state(opt[O_T0], y, par, disc, hdr, smp, met, log, cnt)
     return integrate_with(auto_step, auto_dense, work_rows, spring_tol,
                           fw_rhs, fw_event, fw_transition, never_static,

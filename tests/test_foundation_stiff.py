@@ -188,3 +188,25 @@ def test_a_grazing_lift_off_does_not_chatter():
         assert (r.events.event == "flight").sum() == 1, m
         assert r.metrics["time_overturn"] == pytest.approx(runs["RK45"].metrics["time_overturn"], abs=1e-6), m
     assert runs["auto"].metrics["steps"] < runs["RK45"].metrics["steps"]
+
+
+def test_a_free_corner_recontacts_above_the_force_resolution():
+    """foundation:2027:139: a slender block (b = 0.95 mm, h = 66 mm) on soft springs (omega/p =
+    7.4) falls after a half-sine and its pivot corner's force grazes 0.  Under Rodas4 the corner
+    touched and left again on forces of 1e-10 N, far below what rtol resolves (rtol M g = 0.02
+    N), until the step budget ran out.  A free corner now re-contacts once its force law exceeds
+    rtol M g: auto and Rodas4 end as RK45 does (overturn after an impact) at one time, to within
+    what rtol = 5e-5 resolves."""
+    body = fr.RigidBlock.rectangle(b=0.0009524630670977434, h=0.06639314409713372)
+    mass = 39.281005756320994
+    fnd = TwoSpringFoundation.from_vibration(body, omega=7.437711715558029 * body.p, zeta=0.14510287272202993,
+                                             mass=mass)
+    pulse = fr.Pulse(3.066030509802924, 0.1062380066164248, 1, "half-sine", amplitude_unit="g_tan_alpha",
+                     frequency_unit="omega_p/p")
+    runs = {m: fr.simulate(body, pulse, foundation=fnd, mass=mass, t_after=10.0, history_capacity=10,
+                           solver=fr.Solver(rtol=5.00790021535665e-05, method=m, max_steps=200_000))
+            for m in ("auto", "RK45", "Rodas4")}
+    for m, r in runs.items():
+        assert r.status == "overturn:mode1", m
+        assert (r.events.event == "flight").sum() <= 2, m
+        assert r.metrics["time_overturn"] == pytest.approx(runs["RK45"].metrics["time_overturn"], abs=1e-5), m
