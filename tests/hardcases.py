@@ -26,3 +26,18 @@ def long_record(duration=90.0, dt=0.005, peak_g=0.35, seed=7):
     acc = smooth * np.sin(np.pi * t / duration) ** 2
     acc *= peak_g * 9.80665 / np.abs(acc).max()
     return fr.SampledMotion(acc, dt)
+
+
+def stand_in_check(t_end, max_steps, dt, outcome):
+    """A run and the options for ``outcomes.checked_stable_step`` without a kernel: ``outcome(o,
+    tried)`` gives (status code, met) for options ``o``; every try's (dt, budget) is recorded in
+    the returned list."""
+    from fastrock.kernels import layout as L
+    opt = np.zeros(L.N_OPT)
+    opt[L.O_T0], opt[L.O_T_END], opt[L.O_MAX_STEPS], opt[L.O_DT_FIXED] = 0.0, t_end, max_steps, dt
+    tried = []
+
+    def run(o):
+        tried.append((o[L.O_DT_FIXED], o[L.O_MAX_STEPS]))
+        return outcome(o, tried)
+    return run, opt, tried

@@ -165,18 +165,16 @@ def test_checked_step_gives_a_small_step_the_budget_it_needs():
     user would give it (named in the warning)."""
     from fastrock.kernels import layout as L
     from fastrock.running.outcomes import checked_stable_step
-    opt = np.zeros(L.N_OPT)
-    opt[L.O_T0], opt[L.O_T_END], opt[L.O_MAX_STEPS], opt[L.O_DT_FIXED] = 0.0, 10.0, 2e6, 1e-4
-    tried = []
+    from hardcases import stand_in_check
 
-    def run(o):
-        tried.append((o[L.O_DT_FIXED], o[L.O_MAX_STEPS]))
+    def outcome(o, tried):
         met = np.zeros(L.N_MET)
         met[L.M_DT_STABLE] = np.nan
         code = L.SAFE_REST if o[L.O_DT_FIXED] < 4e-6 and 10.0 / o[L.O_DT_FIXED] <= o[L.O_MAX_STEPS] \
             else L.FAIL_UNSTABLE
         return code, met
 
+    run, opt, tried = stand_in_check(10.0, 2e6, 1e-4, outcome)
     step, status, budget = checked_stable_step(run, opt, 1e-4, 2e-5)
     assert [t[0] for t in tried] == [2e-5, 1e-5, 5e-6, 2.5e-6]
     assert step == 2.5e-6 and status == "safe:rest"

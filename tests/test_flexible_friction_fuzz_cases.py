@@ -295,16 +295,14 @@ def test_the_stable_step_check_stays_within_its_budget():
     CHECK_BUDGET_FACTOR times the run's budget, and the check ends "none found" (the warning then
     says no fixed step down to that one ended the run: use the adaptive solver)."""
     from fastrock.running.outcomes import CHECK_BUDGET_FACTOR, checked_stable_step
-    opt = np.zeros(L.N_OPT)
-    opt[L.O_T0], opt[L.O_T_END], opt[L.O_MAX_STEPS], opt[L.O_DT_FIXED] = 0.0, 11.02, 2e6, 7.53e-5
-    tried = []
+    from hardcases import stand_in_check
 
-    def run(o):
-        tried.append((o[L.O_DT_FIXED], o[L.O_MAX_STEPS]))
+    def outcome(o, tried):
         met = np.zeros(L.N_MET)
         met[L.M_DT_STABLE] = 9.45e-6 if len(tried) == 1 else 1.24e-12
         return L.FAIL_UNSTABLE, met
 
+    run, opt, tried = stand_in_check(11.02, 2e6, 7.53e-5, outcome)
     step, how, budget = checked_stable_step(run, opt, 7.53e-5, 1.896e-5)
     floor = 11.02 / (CHECK_BUDGET_FACTOR * 2e6)
     assert step is None and budget is None and how == pytest.approx(floor, rel=1e-2)
