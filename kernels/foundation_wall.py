@@ -24,9 +24,9 @@ The corner springs carry no impulse (soft contact).
 
 Resting on the wall (mode MODE_WALL_REST): after a chatter (physics.md 7:
 ``|q'+| < eps_omega`` or two impacts within eps_t, or a bounce whose rebound
-energy is below rtol M g h, at any e_w) q is held at ``w theta_w`` with ``q' = 0`` (a plastic wall
-impact of the last rebound: the CM's vertical velocity is kept) while y_c
-moves on its springs (``M y_c'' = r_y``, :func:`.foundation.ts_accelerations`).
+energy is below rtol M g h, at any e_w) q is held at ``w theta_w`` with
+``q' = 0`` (a plastic wall impact of the last rebound: the CM's vertical
+velocity is kept) while y_c moves on its springs (``M y_c'' = r_y``, :func:`.foundation.ts_accelerations`).
 The wall force is ``lambda = det A (w q''_free) / (M |J_q|)`` with q''_free
 the free rotation acceleration in the same state, so the block stays on the
 wall while ``w q''_free >= 0`` and is released (``q' = 0``) when it becomes
@@ -71,18 +71,19 @@ from .excitation import excitation_end, ground_rates
 from .foundation import (D_HOLD_LEFT, D_HOLD_RIGHT, D_LEFT, D_RIGHT,
                          TS_IQ, TS_N_EVENTS, TS_REST, corner_arm,
                          ts_corner_transition, corner_compression,
-                         corner_force, side_alpha, spring_par, spring_tol, ts_accelerations,
+                         corner_force, side_alpha, spring_par, spring_tol,
+                         ts_accelerations,
                          ts_after_step, ts_event, ts_force_rate,
                          ts_init_state, ts_kinetic, ts_loads, ts_set_mode,
                          ts_shared_event, ts_shared_transition, ts_transition,
                          never_static)
 from .rodas import auto_dense, auto_step, work_rows
-from .hybrid import (EPS, book_time, check_energy, elastic_below_resolution,
+from .hybrid import (EPS, book_time, check_energy,
                      integrate_with, is_chatter, log_event, sweep_rows,
                      uniform_tol)
 from .layout import (D_MODE, D_PIVOT, EV_WALL_IMPACT, EV_WALL_RELEASE, EV_WALL_REST,
                      LEANING, MODE_ROCK, MODE_WALL_REST, M_WALL_IMPACTS,
-                     N_DISC, O_EARLY_EXIT, O_T0, RUNNING, S_ON, SAFE_REST)
+                     N_DISC, O_EARLY_EXIT, O_RTOL, O_T0, RUNNING, S_ON, SAFE_REST)
 from .layout import (P_ALPHA, P_B, P_B_SKEW, P_CV, P_E_W, P_G, P_H, P_I_C, P_KV, P_MASS,
                      P_THETA_OVER, P_THETA_W, P_WALL_SIDE)
 from .foundation import (SW_N_EVENTS, sw_after_step, sw_event,
@@ -239,8 +240,7 @@ def fw_wall_impact(t, y, par, disc, hdr, smp, opt, met, log, cnt):
     # (foundation_wall:2027:222 and :336, 5e4 impacts 1e-6 s apart)
     rebound = 0.5 * (par[P_I_C] - par[P_MASS] * (par[P_H] * math.sin(y[2])) ** 2) * post * post
     scale = par[P_MASS] * par[P_G] * par[P_H]
-    if is_chatter(t, post, opt, met) or \
-            elastic_below_resolution(1.0, rebound, scale, opt):
+    if is_chatter(t, post, opt, met) or rebound < opt[O_RTOL] * scale:
         fw_settle(t, y, par, disc, hdr, smp, met, log, cnt)
     return RUNNING
 

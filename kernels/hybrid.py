@@ -425,7 +425,7 @@ def integrate_with(step, dense, work_rows, tol_of, rhs, event, transition,
                    smp, opt, t_eval, met, hist_t, hist_y, hist_d, log, cnt):
     """``integrate_hybrid`` with the integration method as three functions
     (``dopri.dopri_step`` / ``dopri_dense`` / ``dopri_work_rows`` have the
-    contract) and the model's absolute tolerances as a fourth:
+    contract) and the model's tolerances as a fourth:
 
     ``step(rhs, t, y, f, h, fresh, fixed, K, ytmp, ftmp, y_new, y_scale,
     tol, opt, par, disc, hdr, smp, met) -> (err, exponent)``
